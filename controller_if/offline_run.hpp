@@ -1,0 +1,25 @@
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "rt_core/model.hpp"
+#include "rt_core/simulator.hpp"
+
+namespace ambdrop {
+
+struct OfflineRunResult {
+  StepStatus status = StepStatus::kOk;
+  std::int64_t steps = 0;
+  State final_state;
+  std::string failure_message;  ///< with a state dump when status != kOk
+};
+
+/// Runs a model offline on the virtual clock: scheduled trigger, AMB currents from the
+/// configured profiles, an observation every output interval (and at t = 0) passed to
+/// `on_output`. Stops early, with a message and a state dump, if the simulation diverges.
+OfflineRunResult RunOffline(const Model& model,
+                            const std::function<void(const Observation&)>& on_output,
+                            const std::function<void(double fraction_done)>& on_progress = {});
+
+}  // namespace ambdrop

@@ -1,0 +1,114 @@
+#include <fmt/format.h>
+
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "io/config_readers.hpp"
+#include "rt_core/limits.hpp"
+
+namespace ambdrop::config_detail {
+namespace {
+
+constexpr std::string_view kEquivalent = "equivalent";
+constexpr std::string_view kLinearised = "linearised_currents";
+
+const std::vector<std::string_view> kEquivalentKeys = {"stiffness_N_per_m", "damping_N_s_per_m",
+                                                       "gravity_compensation"};
+const std::vector<std::string_view> kLinearisedKeys = {
+    "current_gain_N_per_A", "position_gain_N_per_m", "current_profile"};
+
+/// Keys of the other force law get a message naming the law, not just "unknown key".
+void RejectKeysOfOtherLaw(const TableReader& table, std::string_view law,
+                          const std::vector<std::string_view>& keys, std::string_view other_law) {
+  for (const std::string_view key : keys) {
+    table.Reject(key, fmt::format("no {} with law = \"{}\" (it belongs to law = \"{}\")", key, law,
+                                  other_law));
+  }
+}
+
+std::optional<double> FiniteNumber(const toml::node& node) {
+  double value = 0.0;
+  if (const auto* integer = node.as_integer()) {
+    value = static_cast<double>(integer->get());
+  } else if (const auto* floating = node.as_floating_point()) {
+    value = floating->get();
+  } else {
+    return std::nullopt;
+  }
+  if (!std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+std::vector<CurrentSample> ReadCurrentProfile(const TableReader& table) {
+  const toml::array* points = table.OptionalArray(
+      "current_profile", "an array of [time_s, current_x_A, current_y_A] triples");
+  if (points == nullptr) return {};
+  if (points->size() > static_cast<std::size_t>(kMaxProfilePoints)) {
+    table.Fail("current_profile", fmt::format("at most {} points", kMaxProfilePoints),
+               fmt::format("{} points", points->size()));
+  }
+  std::vector<CurrentSample> profile;
+  for (std::size_t i = 0; i < points->size(); ++i) {
+    const toml::node& point = (*points)[i];
+    const std::string path = fmt::format("{}[{}]", table.KeyPath("current_profile"), i);
+    const auto fail = [&](std::string_view expected) {
+      ThrowBadValue(point, table.source_name(), path, expected);
+    };
+    const std::string_view expected_triple =
+        "a triple [time_s, current_x_A, current_y_A] of finite numbers (s, A, A)";
+    const toml::array* triple = point.as_array();
+    if (triple == nullptr || triple->size() != 3) fail(expected_triple);
+    std::optional<double> values[3];
+    for (std::size_t j = 0; j < 3; ++j) {
+      values[j] = FiniteNumber((*triple)[j]);
+      if (!values[j]) fail(expected_triple);
+    }
+    // Interpolation between points needs a strictly increasing time axis.
+    if (!profile.empty() && *values[0] <= profile.back().time_s) {
+      fail(fmt::format("a time_s greater than that of the previous point ({} s)",
+                       profile.back().time_s));
+    }
+    profile.push_back(
+        CurrentSample{.time_s = *values[0], .current_x_A = *values[1], .current_y_A = *values[2]});
+  }
+  return profile;
+}
+
+AmbParams ReadAmb(const std::string& name, const TableReader& table, const AxialRange& position) {
+  AmbParams amb;
+  amb.name = name;
+  const std::string law = table.Choice("law", {kEquivalent, kLinearised}, kEquivalent);
+  if (law == kEquivalent) {
+    RejectKeysOfOtherLaw(table, kEquivalent, kLinearisedKeys, kLinearised);
+    table.AllowOnly(
+        {"position_m", "law", "stiffness_N_per_m", "damping_N_s_per_m", "gravity_compensation"});
+    amb.law = AmbForceLaw::kEquivalent;
+    amb.position_m = ReadAxialPosition(table, position);
+    amb.stiffness_N_per_m = table.Number("stiffness_N_per_m", NonNegative());
+    amb.damping_N_s_per_m = table.Number("damping_N_s_per_m", NonNegative());
+    amb.gravity_compensation = table.Bool("gravity_compensation", amb.gravity_compensation);
+    return amb;
+  }
+  RejectKeysOfOtherLaw(table, kLinearised, kEquivalentKeys, kEquivalent);
+  table.AllowOnly(
+      {"position_m", "law", "current_gain_N_per_A", "position_gain_N_per_m", "current_profile"});
+  amb.law = AmbForceLaw::kLinearisedCurrents;
+  amb.position_m = ReadAxialPosition(table, position);
+  amb.current_gain_N_per_A = table.Number("current_gain_N_per_A", AnyNumber());
+  amb.position_gain_N_per_m = table.Number("position_gain_N_per_m", NonNegative());
+  amb.current_profile = ReadCurrentProfile(table);
+  return amb;
+}
+
+}  // namespace
+
+std::vector<AmbParams> ReadAmbs(const TableReader& root, const AxialRange& position) {
+  const auto tables = root.NamedTables("amb");
+  root.CheckCount("amb", tables.size(), kMaxAmbs, "magnetic bearings");
+  std::vector<AmbParams> ambs;
+  for (const auto& [name, table] : tables) ambs.push_back(ReadAmb(name, table, position));
+  return ambs;
+}
+
+}  // namespace ambdrop::config_detail

@@ -1,0 +1,90 @@
+#include <fmt/format.h>
+
+#include <optional>
+#include <tuple>
+#include <utility>
+
+#include "io/config_readers.hpp"
+#include "rt_core/limits.hpp"
+
+namespace ambdrop::config_detail {
+namespace {
+
+/// Either `both_key` for both axes or `x_key` together with `y_key`; nullopt when none is given.
+std::optional<std::pair<double, double>> ReadAxisPair(const TableReader& table,
+                                                      std::string_view both_key,
+                                                      std::string_view x_key,
+                                                      std::string_view y_key) {
+  if (table.Has(both_key)) {
+    for (const std::string_view key : {x_key, y_key}) {
+      table.Reject(key, fmt::format("no {} next to {} (give {} for both axes, or {} and {})", key,
+                                    both_key, both_key, x_key, y_key));
+    }
+    const double value = table.Number(both_key, NonNegative());
+    return std::pair(value, value);
+  }
+  if (!table.Has(x_key) && !table.Has(y_key)) return std::nullopt;
+  const double x = table.Number(x_key, NonNegative());
+  const double y = table.Number(y_key, NonNegative());
+  return std::pair(x, y);
+}
+
+}  // namespace
+
+std::vector<LinearBearingParams> ReadBearings(const TableReader& root, const AxialRange& position) {
+  const auto tables = root.NamedTables("bearing");
+  root.CheckCount("bearing", tables.size(), kMaxLinearBearings, "linear bearings");
+  std::vector<LinearBearingParams> bearings;
+  for (const auto& [name, table] : tables) {
+    table.AllowOnly({"position_m", "stiffness_N_per_m", "stiffness_x_N_per_m",
+                     "stiffness_y_N_per_m", "damping_N_s_per_m", "damping_x_N_s_per_m",
+                     "damping_y_N_s_per_m"});
+    LinearBearingParams bearing;
+    bearing.name = name;
+    bearing.position_m = ReadAxialPosition(table, position);
+    const auto stiffness =
+        ReadAxisPair(table, "stiffness_N_per_m", "stiffness_x_N_per_m", "stiffness_y_N_per_m");
+    if (!stiffness) {
+      table.FailMissing("stiffness_N_per_m",
+                        "a non-negative number (N/m), or stiffness_x_N_per_m and "
+                        "stiffness_y_N_per_m");
+    }
+    std::tie(bearing.stiffness_x_N_per_m, bearing.stiffness_y_N_per_m) = *stiffness;
+    const auto damping =
+        ReadAxisPair(table, "damping_N_s_per_m", "damping_x_N_s_per_m", "damping_y_N_s_per_m");
+    if (damping) std::tie(bearing.damping_x_N_s_per_m, bearing.damping_y_N_s_per_m) = *damping;
+    bearings.push_back(std::move(bearing));
+  }
+  return bearings;
+}
+
+std::vector<SensorParams> ReadSensors(const TableReader& root, const AxialRange& position) {
+  const auto tables = root.NamedTables("sensor");
+  root.CheckCount("sensor", tables.size(), kMaxSensors, "sensors");
+  std::vector<SensorParams> sensors;
+  for (const auto& [name, table] : tables) {
+    table.AllowOnly({"position_m"});
+    sensors.push_back(SensorParams{.name = name, .position_m = ReadAxialPosition(table, position)});
+  }
+  return sensors;
+}
+
+std::vector<UnbalanceParams> ReadUnbalances(const TableReader& root, const AxialRange& position) {
+  const auto tables = root.NamedTables("unbalance");
+  root.CheckCount("unbalance", tables.size(), kMaxUnbalances, "unbalances");
+  std::vector<UnbalanceParams> unbalances;
+  for (const auto& [name, table] : tables) {
+    table.AllowOnly({"enabled", "position_m", "mass_kg", "eccentricity_m", "phase_rad"});
+    UnbalanceParams unbalance;
+    unbalance.name = name;
+    unbalance.enabled = table.Bool("enabled", unbalance.enabled);
+    unbalance.position_m = ReadAxialPosition(table, position);
+    unbalance.mass_kg = table.Number("mass_kg", NonNegative());
+    unbalance.eccentricity_m = table.Number("eccentricity_m", NonNegative());
+    unbalance.phase_rad = table.Number("phase_rad", AnyNumber(), unbalance.phase_rad);
+    unbalances.push_back(std::move(unbalance));
+  }
+  return unbalances;
+}
+
+}  // namespace ambdrop::config_detail

@@ -1,0 +1,74 @@
+#include "io/config_loader.hpp"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "io/config_overrides.hpp"
+#include "io/config_readers.hpp"
+#include "io/toml_reader.hpp"
+
+namespace ambdrop {
+namespace {
+
+using config_detail::TableReader;
+
+toml::table Parse(const std::string& text, const std::string& source_name) {
+  try {
+    return toml::parse(text, std::string_view(source_name));
+  } catch (const toml::parse_error& error) {
+    throw ConfigError(fmt::format("{}:{}: {} (column {})", source_name,
+                                  error.source().begin.line, error.description(),
+                                  error.source().begin.column));
+  }
+}
+
+ModelParams ReadModel(const TableReader& root) {
+  root.AllowOnly({"name", "simulation", "gravity", "trigger", "rotor", "bearing", "amb", "sensor",
+                  "tdb", "unbalance"});
+  ModelParams params;
+  params.name = root.String("name", "");
+  params.simulation = config_detail::ReadSimulation(root);
+  params.gravity = config_detail::ReadGravity(root);
+  params.trigger = config_detail::ReadTrigger(root);
+  params.rotor = config_detail::ReadRotor(root);
+  const config_detail::AxialRange position = config_detail::ShaftRange(params.rotor);
+  params.bearings = config_detail::ReadBearings(root, position);
+  params.ambs = config_detail::ReadAmbs(root, position);
+  params.sensors = config_detail::ReadSensors(root, position);
+  params.tdbs = config_detail::ReadTdbs(root, position);
+  params.unbalances = config_detail::ReadUnbalances(root, position);
+  return params;
+}
+
+}  // namespace
+
+LoadedConfig LoadConfig(const std::filesystem::path& path,
+                        const std::vector<std::string>& overrides) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw ConfigError(fmt::format("{}: cannot open the config file", path.string()));
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (file.bad()) throw ConfigError(fmt::format("{}: cannot read the config file", path.string()));
+  return LoadConfigFromString(text.str(), path.string(), overrides);
+}
+
+LoadedConfig LoadConfigFromString(const std::string& text, const std::string& source_name,
+                                  const std::vector<std::string>& overrides) {
+  toml::table root = Parse(text, source_name);
+  for (const std::string& override_text : overrides) {
+    config_detail::ApplyOverride(root, override_text);
+  }
+  LoadedConfig loaded;
+  loaded.source_path = source_name;
+  loaded.source_text = text;
+  std::ostringstream effective;
+  effective << root << '\n';
+  loaded.effective_toml = effective.str();
+  loaded.params = ReadModel(TableReader(root, "", source_name));
+  return loaded;
+}
+
+}  // namespace ambdrop

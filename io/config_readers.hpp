@@ -1,0 +1,34 @@
+#pragma once
+// One reader per section of the config schema (see config_loader.hpp). Each checks its own keys
+// strictly and throws ConfigError on the first problem.
+#include <limits>
+#include <vector>
+
+#include "io/toml_reader.hpp"
+#include "rt_core/model_params.hpp"
+
+namespace ambdrop::config_detail {
+
+SimulationParams ReadSimulation(const TableReader& root);
+GravityParams ReadGravity(const TableReader& root);
+TriggerParams ReadTrigger(const TableReader& root);
+
+RotorParams ReadRotor(const TableReader& root);
+
+/// Where components may sit: on the shaft for a flexible rotor, anywhere finite for a rigid one.
+struct AxialRange {
+  NumberRule rule;
+  double end_m = std::numeric_limits<double>::infinity();  ///< shaft length
+};
+AxialRange ShaftRange(const RotorParams& rotor);
+
+/// The table's required `position_m`, within `range`.
+double ReadAxialPosition(const TableReader& table, const AxialRange& range);
+
+std::vector<LinearBearingParams> ReadBearings(const TableReader& root, const AxialRange& position);
+std::vector<AmbParams> ReadAmbs(const TableReader& root, const AxialRange& position);
+std::vector<SensorParams> ReadSensors(const TableReader& root, const AxialRange& position);
+std::vector<TdbParams> ReadTdbs(const TableReader& root, const AxialRange& position);
+std::vector<UnbalanceParams> ReadUnbalances(const TableReader& root, const AxialRange& position);
+
+}  // namespace ambdrop::config_detail

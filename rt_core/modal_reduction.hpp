@@ -1,0 +1,23 @@
+#pragma once
+#include <Eigen/Core>
+
+#include "rt_core/fe_rotor.hpp"
+#include "rt_core/reduced_rotor.hpp"
+
+namespace ambdrop {
+
+/// Pseudo-modal reduction (Jarroux 2019 Sec. 5; Lalanne & Ferraris): the basis is the first
+/// `modes` free-free modes of (K, M), rigid-body modes included, mass-normalised. Modal damping
+/// 2 zeta omega is put on the flexible modes; bearings and gyroscopics are projected.
+ReducedRotor ReduceFeRotor(const FeRotor& fe, const Eigen::MatrixXd& bearing_stiffness,
+                           const Eigen::MatrixXd& bearing_damping, int modes,
+                           double modal_damping_ratio);
+
+/// Rigid rotor as 4 mass-normalised coordinates (x, y, theta_x, theta_y at the centre of mass).
+ReducedRotor RigidReducedRotor(const RigidRotorParams& rigid,
+                               const std::vector<LinearBearingParams>& bearings);
+
+/// The reduced rotor a config describes (flexible or rigid).
+ReducedRotor BuildReducedRotor(const ModelParams& params);
+
+}  // namespace ambdrop

@@ -1,0 +1,117 @@
+#include "rt_core/model.hpp"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "rt_core/modal_reduction.hpp"
+#include "rt_core/tdb_factory.hpp"
+
+namespace ambdrop {
+namespace {
+
+void CheckCount(std::size_t count, int limit, const char* what) {
+  if (static_cast<int>(count) > limit) {
+    throw std::invalid_argument(std::string("too many ") + what + ": " + std::to_string(count) +
+                                " (at most " + std::to_string(limit) + ")");
+  }
+}
+
+// Vertical forces at the gravity-compensated AMBs that an integrating controller settles on:
+// the static deflection at those AMBs is zero. With q = K^-1 (Fg + B f) and S_y q = 0:
+// (S_y K^-1 B) f = -S_y K^-1 Fg, B = [S_y,a^T].
+void GravityCompensation(Model* m) {
+  const int n = m->modes();
+  std::vector<int> compensated;
+  for (int a = 0; a < static_cast<int>(m->params.ambs.size()); ++a) {
+    const AmbParams& amb = m->params.ambs[a];
+    if (amb.law == AmbForceLaw::kEquivalent && amb.gravity_compensation) compensated.push_back(a);
+  }
+  m->amb_bias_force = ModalVector::Zero(n);
+  m->amb_bias_force_N.assign(m->params.ambs.size(), {0.0, 0.0});
+  if (compensated.empty() || !m->params.gravity.enabled) return;
+  const int na = static_cast<int>(compensated.size());
+  Eigen::MatrixXd b(n, na);
+  for (int i = 0; i < na; ++i) b.col(i) = m->amb_shapes[compensated[i]].row(1).transpose();
+  const Eigen::MatrixXd k = m->stiffness_powered;
+  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> k_inv(k);
+  const Eigen::MatrixXd kb = k_inv.solve(b);
+  const Eigen::VectorXd kg = k_inv.solve(Eigen::VectorXd(m->gravity_force));
+  const Eigen::MatrixXd a = b.transpose() * kb;
+  const Eigen::VectorXd f = a.completeOrthogonalDecomposition().solve(-(b.transpose() * kg));
+  for (int i = 0; i < na; ++i) m->amb_bias_force_N[compensated[i]] = {0.0, f(i)};
+  m->amb_bias_force = b * f;
+}
+
+}  // namespace
+
+Model BuildModel(const ModelParams& params) {
+  CheckCount(params.tdbs.size(), kMaxTdbs, "touchdown bearings");
+  CheckCount(params.ambs.size(), kMaxAmbs, "AMBs");
+  CheckCount(params.sensors.size(), kMaxSensors, "sensors");
+  CheckCount(params.unbalances.size(), kMaxUnbalances, "unbalances");
+  CheckCount(params.bearings.size(), kMaxLinearBearings, "linear bearings");
+  if (!(params.simulation.step_s > 0.0)) throw std::invalid_argument("simulation.step_s must be > 0");
+
+  Model m;
+  m.params = params;
+  m.rotor = BuildReducedRotor(params);
+  const int n = m.rotor.size;
+  for (const auto& a : params.ambs) m.amb_shapes.push_back(m.rotor.ShapeAt(a.position_m));
+  for (const auto& t : params.tdbs) m.tdb_shapes.push_back(m.rotor.ShapeAt(t.position_m));
+  for (const auto& s : params.sensors) m.sensor_shapes.push_back(m.rotor.ShapeAt(s.position_m));
+  for (const auto& u : params.unbalances) m.unbalance_shapes.push_back(m.rotor.ShapeAt(u.position_m));
+
+  m.state_size = 2 * n + 2;
+  for (const auto& t : params.tdbs) {
+    m.tdbs.push_back(MakeTouchdownBearing(t));
+    CheckCount(static_cast<std::size_t>(m.tdbs.back()->StateSize()), kMaxTdbStates,
+               "states in one TDB model");
+    m.tdb_state_offset.push_back(m.state_size);
+    m.state_size += m.tdbs.back()->StateSize();
+  }
+
+  m.gravity_force = ModalVector::Zero(n);
+  if (params.gravity.enabled) {
+    m.gravity_force = -params.gravity.acceleration_m_s2 * m.rotor.vertical_unit_force;
+  }
+  m.stiffness_powered = m.rotor.stiffness;
+  m.damping_powered = m.rotor.damping;
+  for (std::size_t a = 0; a < params.ambs.size(); ++a) {
+    const AmbParams& amb = params.ambs[a];
+    const StationShape& s = m.amb_shapes[a];
+    if (amb.law == AmbForceLaw::kEquivalent) {
+      m.stiffness_powered += amb.stiffness_N_per_m * s.transpose() * s;
+      m.damping_powered += amb.damping_N_s_per_m * s.transpose() * s;
+    } else {
+      // f = ki i + ks u: the position term is a negative stiffness.
+      m.stiffness_powered -= amb.position_gain_N_per_m * s.transpose() * s;
+    }
+  }
+  GravityCompensation(&m);
+
+  const double dt = params.simulation.step_s;
+  m.trigger_step = params.trigger.enabled ? std::llround(params.trigger.time_s / dt) : -1;
+  m.total_steps = std::llround(params.simulation.duration_s / dt);
+  return m;
+}
+
+ModalVector PoweredEquilibrium(const Model& m,
+                               const std::array<std::array<double, 2>, kMaxAmbs>& current_A) {
+  const int n = m.modes();
+  Eigen::VectorXd f = m.gravity_force + m.amb_bias_force;
+  for (std::size_t a = 0; a < m.params.ambs.size(); ++a) {
+    const AmbParams& amb = m.params.ambs[a];
+    if (amb.law != AmbForceLaw::kLinearisedCurrents) continue;
+    const Eigen::Vector2d fa(amb.current_gain_N_per_A * current_A[a][0],
+                             amb.current_gain_N_per_A * current_A[a][1]);
+    f += m.amb_shapes[a].transpose() * fa;
+  }
+  const Eigen::MatrixXd k = m.stiffness_powered;
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(k);
+  if (!lu.isInvertible()) return ModalVector::Zero(n);
+  return lu.solve(f);
+}
+
+}  // namespace ambdrop

@@ -1,0 +1,49 @@
+#pragma once
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "rt_core/eigen_types.hpp"
+#include "rt_core/model_params.hpp"
+#include "rt_core/reduced_rotor.hpp"
+#include "rt_core/touchdown_bearing.hpp"
+
+namespace ambdrop {
+
+/// Immutable simulation model built once from ModelParams (may allocate and throw
+/// std::invalid_argument; nothing after it does).
+struct Model {
+  ModelParams params;
+  ReducedRotor rotor;
+
+  std::vector<StationShape> amb_shapes;
+  std::vector<StationShape> tdb_shapes;
+  std::vector<StationShape> sensor_shapes;
+  std::vector<StationShape> unbalance_shapes;
+  std::vector<std::unique_ptr<TouchdownBearing>> tdbs;
+  std::vector<int> tdb_state_offset;  ///< into State::y
+
+  ModalVector gravity_force;      ///< S^T f of gravity, constant
+  /// K and C while the AMBs are powered: rotor plus the equivalent-law AMBs projected on q.
+  ModalMatrix stiffness_powered;
+  ModalMatrix damping_powered;
+  ModalVector amb_bias_force;     ///< gravity compensation of equivalent-law AMBs
+  std::vector<std::array<double, 2>> amb_bias_force_N;  ///< per AMB (x, y), for reports
+
+  int state_size = 0;
+  std::int64_t trigger_step = -1;  ///< first step without AMB forces (-1: never)
+  std::int64_t total_steps = 0;
+
+  int modes() const { return rotor.size; }
+  int spin_index() const { return 2 * rotor.size; }
+  int spin_angle_index() const { return 2 * rotor.size + 1; }
+};
+
+/// Builds the model: FE assembly and pseudo-modal reduction (or the rigid form), station shapes,
+/// TDB objects, AMB projections and the gravity compensation.
+Model BuildModel(const ModelParams& params);
+
+/// Static equilibrium q of the powered rotor for the given AMB currents (zero if singular).
+ModalVector PoweredEquilibrium(const Model& model, const std::array<std::array<double, 2>, kMaxAmbs>& current_A);
+
+}  // namespace ambdrop

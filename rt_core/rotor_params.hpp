@@ -1,0 +1,71 @@
+#pragma once
+#include <string>
+#include <vector>
+
+namespace ambdrop {
+
+/// Isotropic linear-elastic shaft material.
+struct Material {
+  double youngs_modulus_Pa = 211e9;
+  double shear_modulus_Pa = 81.2e9;
+  double density_kg_m3 = 7810.0;
+};
+
+/// One cylindrical (optionally bored) shaft section; sections follow each other along +z from 0.
+struct ShaftSection {
+  double length_m = 0.0;
+  double outer_diameter_m = 0.0;
+  double inner_diameter_m = 0.0;
+  Material material;
+  int elements = 1;  ///< Timoshenko elements in this section (more are added at stations)
+};
+
+/// Rigid disc or added mass at an axial position (coupling halves, impellers, laminations).
+struct Disc {
+  std::string name;
+  double position_m = 0.0;
+  double mass_kg = 0.0;
+  double polar_inertia_kg_m2 = 0.0;
+  double transverse_inertia_kg_m2 = 0.0;
+};
+
+/// Rigid rotor: 4 DOF (x, y, theta_x, theta_y) at the centre of mass.
+struct RigidRotorParams {
+  double mass_kg = 0.0;
+  double polar_inertia_kg_m2 = 0.0;
+  double transverse_inertia_kg_m2 = 0.0;
+  double centre_of_mass_m = 0.0;  ///< axial position of the centre of mass
+};
+
+enum class RotorKind { kFlexible, kRigid };
+
+struct RotorParams {
+  RotorKind kind = RotorKind::kFlexible;
+  std::vector<ShaftSection> sections;  ///< flexible rotor only
+  std::vector<Disc> discs;             ///< flexible rotor only
+  RigidRotorParams rigid;              ///< rigid rotor only
+  int modes = 12;                      ///< pseudo-modal basis size (Jarroux 2019, Sec. 5)
+  double modal_damping_ratio = 0.005;  ///< applied to the flexible modes only
+};
+
+/// Linear spring/damper support between the rotor and ground (tests, linearised bearings).
+struct LinearBearingParams {
+  std::string name;
+  double position_m = 0.0;
+  double stiffness_x_N_per_m = 0.0;
+  double stiffness_y_N_per_m = 0.0;
+  double damping_x_N_s_per_m = 0.0;
+  double damping_y_N_s_per_m = 0.0;
+};
+
+/// Unbalance mass; the phase is the angle from +x at spin angle zero (at t = 0).
+struct UnbalanceParams {
+  std::string name;
+  bool enabled = true;
+  double position_m = 0.0;
+  double mass_kg = 0.0;
+  double eccentricity_m = 0.0;
+  double phase_rad = 0.0;
+};
+
+}  // namespace ambdrop

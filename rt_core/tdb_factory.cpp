@@ -1,0 +1,17 @@
+#include "rt_core/tdb_factory.hpp"
+
+#include <stdexcept>
+
+#include "rt_core/contact_law_tdb.hpp"
+
+namespace ambdrop {
+
+std::unique_ptr<TouchdownBearing> MakeTouchdownBearing(const TdbParams& params) {
+  switch (params.model) {
+    case TdbModelKind::kContactLaw:
+      return std::make_unique<ContactLawTdb>(params);
+  }
+  throw std::invalid_argument("tdb '" + params.name + "': unknown model");
+}
+
+}  // namespace ambdrop

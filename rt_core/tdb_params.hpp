@@ -1,0 +1,61 @@
+#pragma once
+#include <string>
+
+namespace ambdrop {
+
+/// Contact-law TDB, Jarroux 2019 Eq. (12): ribbon (keq, ceq) until crushed by urd, then the ball
+/// bearing (kbrg, cbrg) in series with the crushed ribbon's static force keq*urd.
+struct ContactLawParams {
+  double bearing_stiffness_N_per_m = 0.0;   ///< kbrg
+  double bearing_damping_N_s_per_m = 0.0;   ///< cbrg
+  double ribbon_stiffness_N_per_m = 0.0;    ///< keq (ribbon and bearing in series)
+  double ribbon_damping_N_s_per_m = 0.0;    ///< ceq
+  double ribbon_crushing_m = 0.0;           ///< urd, ribbon crushing capacity
+};
+
+enum class FrictionLaw {
+  kNone,                ///< frictionless contact
+  kRegularisedCoulomb,  ///< Jarroux 2019 Eq. (11)
+};
+
+struct FrictionParams {
+  FrictionLaw law = FrictionLaw::kRegularisedCoulomb;
+  double coefficient = 0.2;               ///< mu_s
+  double regularisation_s_per_m = 100.0;  ///< vref in atan(vref * vs)
+  /// Viscous tangential force on the journal's whirl speed while in contact (Jarroux 2019,
+  /// Sec. 4.2: "a viscous force ... counteracting the rotor whirl motions").
+  double whirl_damping_N_s_per_m = 0.0;
+};
+
+/// TDB rotation, Jarroux 2019 Eq. (9): Ieq dOmega/dt + Phi Omega = ft Rir - M1.
+struct TdbSpinParams {
+  bool enabled = true;                        ///< false: the inner race stays at rest
+  double inertia_kg_m2 = 2.2e-3;              ///< Ieq, inner race + balls
+  double rotational_damping_N_m_s = 0.0;      ///< Phi
+  double palmgren_f1 = 0.0;                   ///< M1 = f1 * fn * dm (Palmgren / Harris)
+  double pitch_diameter_m = 0.0;              ///< dm
+  double drag_torque_N_m = 0.0;               ///< constant drag torque (seals, windage)
+};
+
+/// Offset of the TDB centre from the magnetic centre (Jarroux 2019, Sec. 4).
+struct MisalignmentParams {
+  bool enabled = false;
+  double x_m = 0.0;
+  double y_m = 0.0;
+};
+
+enum class TdbModelKind { kContactLaw };
+
+struct TdbParams {
+  std::string name;
+  double position_m = 0.0;
+  double journal_radius_m = 0.0;  ///< rotor radius at the TDB
+  double clearance_m = 0.0;       ///< radial clearance rotor / inner race
+  TdbModelKind model = TdbModelKind::kContactLaw;
+  ContactLawParams contact_law;
+  FrictionParams friction;
+  TdbSpinParams spin;
+  MisalignmentParams misalignment;
+};
+
+}  // namespace ambdrop

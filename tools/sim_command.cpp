@@ -1,0 +1,215 @@
+#include "tools/sim_command.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "controller_if/offline_run.hpp"
+#include "io/config_loader.hpp"
+#include "io/json_writer.hpp"
+#include "io/timeseries_csv.hpp"
+#include "rt_core/model.hpp"
+#include "tools/exit_codes.hpp"
+#include "tools/progress_bar.hpp"
+#include "tools/run_summary.hpp"
+
+namespace ambdrop {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// What the run produced besides the observations.
+struct RunStatistics {
+  std::string config_path;
+  std::string name;
+  StepStatus status = StepStatus::kOk;
+  std::string failure_message;
+  std::int64_t steps = 0;
+  double step_s = 0.0;
+  double wall_time_s = 0.0;
+  std::optional<double> trigger_time_s;
+  double final_spin_speed_rad_s = 0.0;
+
+  double simulated_time_s() const { return static_cast<double>(steps) * step_s; }
+  double realtime_factor() const {
+    return wall_time_s > 0.0 ? simulated_time_s() / wall_time_s
+                             : std::numeric_limits<double>::quiet_NaN();
+  }
+};
+
+const char* StatusName(StepStatus status) {
+  switch (status) {
+    case StepStatus::kOk:
+      return "ok";
+    case StepStatus::kNonFinite:
+      return "non_finite";
+    case StepStatus::kExcursionBound:
+      return "excursion_bound";
+  }
+  return "unknown";
+}
+
+std::string SummaryJson(const RunStatistics& run, const RunSummary& summary) {
+  JsonWriter json;
+  json.BeginObject();
+  json.Key("config").String(run.config_path);
+  json.Key("name").String(run.name);
+  json.Key("status").String(StatusName(run.status));
+  json.Key("failure_message");
+  if (run.status == StepStatus::kOk) {
+    json.Null();
+  } else {
+    json.String(run.failure_message);
+  }
+  json.Key("steps").Integer(run.steps);
+  json.Key("step_s").Number(run.step_s);
+  json.Key("simulated_time_s").Number(run.simulated_time_s());
+  json.Key("wall_time_s").Number(run.wall_time_s);
+  json.Key("realtime_factor").Number(run.realtime_factor());
+  json.Key("trigger_time_s").Number(run.trigger_time_s);
+  json.Key("final_spin_speed_rad_s").Number(run.final_spin_speed_rad_s);
+  json.Key("observations").Integer(summary.observations());
+  json.Key("tdbs").BeginObject();
+  for (const TdbSummary& tdb : summary.tdbs()) {
+    json.Key(tdb.name).BeginObject();
+    json.Key("peak_normal_force_N").Number(tdb.peak_normal_force_N);
+    json.Key("max_excursion_over_clearance").Number(tdb.max_excursion_over_clearance);
+    json.Key("first_contact_time_s").Number(tdb.first_contact_time_s);
+    json.Key("spinup_time_s").Number(tdb.spinup_time_s);
+    json.EndObject();
+  }
+  json.EndObject();
+  json.EndObject();
+  return json.str();
+}
+
+std::string OrDash(std::optional<double> value) {
+  return value ? fmt::format("{:.6g}", *value) : std::string("-");
+}
+
+void PrintSummaryTable(const RunStatistics& run, const RunSummary& summary, const fs::path& out_dir,
+                       std::int64_t rows) {
+  fmt::print("{}: {}, {} steps, {:.6g} s simulated in {:.3g} s ({:.3g}x real time)\n",
+             run.name.empty() ? run.config_path : run.name, StatusName(run.status), run.steps,
+             run.simulated_time_s(), run.wall_time_s, run.realtime_factor());
+  fmt::print("final spin speed {:.6g} rad/s ({:.6g} rpm)\n", run.final_spin_speed_rad_s,
+             run.final_spin_speed_rad_s * 60.0 / (2.0 * std::numbers::pi));
+  if (!summary.tdbs().empty()) {
+    fmt::print("{:<10} {:>14} {:>14} {:>18} {:>14}\n", "TDB", "peak Fn [N]", "max |e|/c",
+               "first contact [s]", "spin-up [s]");
+    for (const TdbSummary& tdb : summary.tdbs()) {
+      fmt::print("{:<10} {:>14.6g} {:>14.6g} {:>18} {:>14}\n", tdb.name, tdb.peak_normal_force_N,
+                 tdb.max_excursion_over_clearance, OrDash(tdb.first_contact_time_s),
+                 OrDash(tdb.spinup_time_s));
+    }
+  }
+  fmt::print("wrote {} ({} rows) and {}\n", (out_dir / "timeseries.csv").string(), rows,
+             (out_dir / "summary.json").string());
+}
+
+}  // namespace
+
+int RunSimCommand(const SimOptions& options) {
+  LoadedConfig config;
+  try {
+    config = LoadConfig(options.config_path, options.overrides);
+  } catch (const ConfigError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitConfig;
+  } catch (const std::exception& e) {
+    // Anything else the loader throws (unreadable file …) is still a problem with the input.
+    fmt::print(stderr, "error: {}: {}\n", options.config_path, e.what());
+    return kExitConfig;
+  }
+
+  std::optional<Model> model;
+  try {
+    model.emplace(BuildModel(config.params));
+  } catch (const std::invalid_argument& e) {
+    fmt::print(stderr, "error: {}: cannot build the model: {}\n", options.config_path, e.what());
+    return kExitConfig;
+  }
+
+  const fs::path out_dir(options.out_dir);
+  std::optional<TimeseriesCsvWriter> csv;
+  try {
+    fs::create_directories(out_dir);
+    WriteTextFile(out_dir / "effective_config.toml", config.effective_toml);
+    csv.emplace(out_dir / "timeseries.csv", *model);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitError;
+  }
+
+  RunSummary summary(model->params);
+  ProgressBar progress(!options.quiet && ProgressBar::IsTerminal(2));
+  // RunOffline cannot be stopped from a callback, so an output error is held until it returns
+  // rather than thrown through the simulator.
+  std::string output_error;
+  const auto on_output = [&](const Observation& observation) {
+    summary.Add(observation);
+    if (!output_error.empty()) return;
+    try {
+      csv->Write(observation);
+    } catch (const std::exception& e) {
+      output_error = e.what();
+    }
+  };
+  const auto on_progress = [&](double fraction) { progress.Update(fraction); };
+
+  const auto start = std::chrono::steady_clock::now();
+  const OfflineRunResult result = RunOffline(*model, on_output, on_progress);
+  const auto stop = std::chrono::steady_clock::now();
+  progress.Finish();
+
+  RunStatistics run;
+  run.config_path = options.config_path;
+  run.name = model->params.name;
+  run.status = result.status;
+  run.failure_message = result.failure_message;
+  run.steps = result.steps;
+  run.step_s = model->params.simulation.step_s;
+  run.wall_time_s = std::chrono::duration<double>(stop - start).count();
+  if (model->params.trigger.enabled) run.trigger_time_s = model->params.trigger.time_s;
+  // The final state is exact even when the duration is not a multiple of the output interval;
+  // the last observation is the fallback should a failed run leave no state.
+  const int spin_index = model->spin_index();
+  if (result.final_state.y.size() > spin_index) {
+    run.final_spin_speed_rad_s = result.final_state.y[spin_index];
+  } else {
+    run.final_spin_speed_rad_s =
+        summary.last_spin_speed_rad_s().value_or(std::numeric_limits<double>::quiet_NaN());
+  }
+
+  try {
+    csv->Close();
+  } catch (const std::exception& e) {
+    if (output_error.empty()) output_error = e.what();
+  }
+  try {
+    WriteTextFile(out_dir / "summary.json", SummaryJson(run, summary));
+  } catch (const std::exception& e) {
+    if (output_error.empty()) output_error = e.what();
+  }
+
+  if (!options.quiet) PrintSummaryTable(run, summary, out_dir, csv->rows());
+  std::fflush(stdout);
+  if (!output_error.empty()) fmt::print(stderr, "error: {}\n", output_error);
+  if (result.status != StepStatus::kOk) {
+    fmt::print(stderr, "error: simulation failed ({}): {}\n", StatusName(result.status),
+               result.failure_message);
+    return kExitRunFailed;
+  }
+  return output_error.empty() ? kExitOk : kExitError;
+}
+
+}  // namespace ambdrop

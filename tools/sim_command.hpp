@@ -1,0 +1,21 @@
+#pragma once
+#include <string>
+#include <vector>
+
+namespace ambdrop {
+
+struct SimOptions {
+  std::string config_path;
+  std::string out_dir = "out";
+  std::vector<std::string> overrides;  ///< "dotted.key=value", applied in order
+  bool quiet = false;                  ///< no summary on stdout, no progress bar
+};
+
+/// `ambdrop sim`: loads the config, runs it offline and writes into options.out_dir
+///   timeseries.csv         every observation, exact to the bit
+///   summary.json           drop metrics per TDB and run statistics
+///   effective_config.toml  the config after the overrides, to rerun or diff the case
+/// Returns an ExitCode (exit_codes.hpp); errors are reported on stderr.
+int RunSimCommand(const SimOptions& options);
+
+}  // namespace ambdrop
