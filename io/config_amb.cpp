@@ -15,8 +15,8 @@ constexpr std::string_view kLinearised = "linearised_currents";
 
 const std::vector<std::string_view> kEquivalentKeys = {"stiffness_N_per_m", "damping_N_s_per_m",
                                                        "gravity_compensation"};
-const std::vector<std::string_view> kLinearisedKeys = {
-    "current_gain_N_per_A", "position_gain_N_per_m", "current_profile"};
+const std::vector<std::string_view> kLinearisedKeys = {"current_gain_N_per_A",
+                                                       "position_gain_N_per_m", "current_profile"};
 
 /// Keys of the other force law get a message naming the law, not just "unknown key".
 void RejectKeysOfOtherLaw(const TableReader& table, std::string_view law,

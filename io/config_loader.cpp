@@ -19,9 +19,8 @@ toml::table Parse(const std::string& text, const std::string& source_name) {
   try {
     return toml::parse(text, std::string_view(source_name));
   } catch (const toml::parse_error& error) {
-    throw ConfigError(fmt::format("{}:{}: {} (column {})", source_name,
-                                  error.source().begin.line, error.description(),
-                                  error.source().begin.column));
+    throw ConfigError(fmt::format("{}:{}: {} (column {})", source_name, error.source().begin.line,
+                                  error.description(), error.source().begin.column));
   }
 }
 

@@ -131,9 +131,9 @@ void ApplyOverride(toml::table& root, const std::string& override_text) {
       }
       const std::size_t index = segment.indices[k];
       if (index > array->size()) {
-        Throw(origin, fmt::format("key '{}[{}]': expected an index in [0, {}] ({} has {} "
-                                  "elements; the last index appends), found {}",
-                                  dotted, index, array->size(), dotted, array->size(), index));
+        Throw(origin, fmt::format("key '{}[{}]': expected an index in [0, {}] ({} appends an "
+                                  "element), found {}",
+                                  dotted, index, array->size(), array->size(), index));
       }
       const bool last_index = k + 1 == segment.indices.size();
       if (last_segment && last_index) {

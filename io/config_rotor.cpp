@@ -41,8 +41,8 @@ const Material& LookUpMaterial(const TableReader& table, const MaterialMap& mate
   if (!materials.empty()) {
     std::vector<std::string> names;
     for (const auto& entry : materials) names.push_back(fmt::format("{:?}", entry.first));
-    expected = fmt::format("one of the materials {} (from [rotor.materials])",
-                           fmt::join(names, ", "));
+    expected =
+        fmt::format("one of the materials {} (from [rotor.materials])", fmt::join(names, ", "));
   }
   if (!table.Has("material")) table.FailMissing("material", expected);
   if (!table.Find("material")->is_string()) table.Fail("material", expected);
@@ -52,9 +52,9 @@ const Material& LookUpMaterial(const TableReader& table, const MaterialMap& mate
 }
 
 NumberRule InnerDiameterRule(double outer_diameter_m) {
-  return NonNegativeBelow(outer_diameter_m,
-                          fmt::format("a non-negative number less than outer_diameter_m = {}",
-                                      outer_diameter_m));
+  return NonNegativeBelow(
+      outer_diameter_m,
+      fmt::format("a non-negative number less than outer_diameter_m = {}", outer_diameter_m));
 }
 
 std::vector<ShaftSection> ReadSections(const TableReader& rotor, const MaterialMap& materials) {

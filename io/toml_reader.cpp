@@ -70,13 +70,17 @@ bool NumberRule::Accepts(double value) const {
   return true;
 }
 
-NumberRule AnyNumber() { return NumberRule{.what = "a finite number"}; }
+NumberRule AnyNumber() {
+  return NumberRule{.what = "a finite number"};
+}
 
 NumberRule Positive() {
   return NumberRule{.lower = 0.0, .lower_inclusive = false, .what = "a positive number"};
 }
 
-NumberRule NonNegative() { return NumberRule{.lower = 0.0, .what = "a non-negative number"}; }
+NumberRule NonNegative() {
+  return NumberRule{.lower = 0.0, .what = "a non-negative number"};
+}
 
 NumberRule InRange(double lower, double upper) {
   return NumberRule{.lower = lower,
@@ -149,11 +153,9 @@ std::string DescribeValue(const toml::node& node) {
 }
 
 void ThrowBadValue(const toml::node& node, std::string_view fallback_source,
-                   std::string_view dotted_key, std::string_view expected,
-                   std::string_view found) {
+                   std::string_view dotted_key, std::string_view expected, std::string_view found) {
   throw ConfigError(fmt::format("{}: key '{}': expected {}, found {}",
-                                NodeLocation(node, fallback_source), dotted_key, expected,
-                                found));
+                                NodeLocation(node, fallback_source), dotted_key, expected, found));
 }
 
 void ThrowBadValue(const toml::node& node, std::string_view fallback_source,
@@ -191,7 +193,9 @@ void TableReader::AllowOnly(const std::vector<std::string_view>& allowed) const 
   }
 }
 
-const toml::node* TableReader::Find(std::string_view key) const { return table_->get(key); }
+const toml::node* TableReader::Find(std::string_view key) const {
+  return table_->get(key);
+}
 
 void TableReader::Reject(std::string_view key, std::string_view expected) const {
   if (Has(key)) Fail(key, expected);

@@ -31,9 +31,9 @@ struct NumberRule {
 NumberRule AnyNumber();
 NumberRule Positive();
 NumberRule NonNegative();
-NumberRule InRange(double lower, double upper);           ///< [lower, upper]
-NumberRule InHalfOpenRange(double lower, double upper);   ///< [lower, upper)
-NumberRule AtLeast(double lower, std::string what);       ///< [lower, inf)
+NumberRule InRange(double lower, double upper);               ///< [lower, upper]
+NumberRule InHalfOpenRange(double lower, double upper);       ///< [lower, upper)
+NumberRule AtLeast(double lower, std::string what);           ///< [lower, inf)
 NumberRule NonNegativeBelow(double upper, std::string what);  ///< [0, upper)
 
 /// "m" for "clearance_m", "N s/m" for "damping_N_s_per_m", "" when the key carries no unit.

@@ -7,8 +7,9 @@
 namespace ambdrop {
 
 /// Pseudo-modal reduction (Jarroux 2019 Sec. 5; Lalanne & Ferraris): the basis is the first
-/// `modes` free-free modes of (K, M), rigid-body modes included, mass-normalised. Modal damping
-/// 2 zeta omega is put on the flexible modes; bearings and gyroscopics are projected.
+/// `modes`/2 free-free modes of each bending plane (K, M), rigid-body modes included,
+/// mass-normalised, ordered [xz-plane modes | yz-plane modes]. Modal damping 2 zeta omega is put
+/// on the flexible modes; bearings and gyroscopics are projected.
 ReducedRotor ReduceFeRotor(const FeRotor& fe, const Eigen::MatrixXd& bearing_stiffness,
                            const Eigen::MatrixXd& bearing_damping, int modes,
                            double modal_damping_ratio);

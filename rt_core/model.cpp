@@ -44,6 +44,67 @@ void GravityCompensation(Model* m) {
   m->amb_bias_force = b * f;
 }
 
+PlaneVector Block(const ModalVector& v, int offset, int h) { return v.segment(offset, h); }
+
+PlaneMatrix Block(const ModalMatrix& a, int row, int col, int h) {
+  return a.block(row, col, h, h);
+}
+
+void RequireZero(const ModalMatrix& a, int row, int col, int h, const char* what) {
+  if (!a.block(row, col, h, h).isZero(0.0)) {
+    throw std::logic_error(std::string("the two bending planes are coupled through ") + what);
+  }
+}
+
+PlaneStation SplitStation(const StationShape& s, int h) {
+  PlaneStation p;
+  p.sx = s.row(0).segment(0, h).transpose();
+  p.sy = s.row(1).segment(h, h).transpose();
+  if (!s.row(0).segment(h, h).isZero(0.0) || !s.row(1).segment(0, h).isZero(0.0)) {
+    throw std::logic_error("a station shape mixes the bending planes");
+  }
+  return p;
+}
+
+void SplitByPlane(Model* m) {
+  const int h = m->modes() / 2;
+  PlaneModel& p = m->planes;
+  p.h = h;
+  // The dense matrices must have the plane structure the kernel assumes.
+  for (const ModalMatrix* a : {&m->stiffness_powered, &m->damping_powered}) {
+    RequireZero(*a, 0, h, h, "stiffness or damping");
+    RequireZero(*a, h, 0, h, "stiffness or damping");
+  }
+  RequireZero(m->rotor.gyroscopic, 0, 0, h, "a gyroscopic diagonal block");
+  RequireZero(m->rotor.gyroscopic, h, h, h, "a gyroscopic diagonal block");
+  p.modal_stiffness_x = Block(m->rotor.modal_stiffness, 0, h);
+  p.modal_stiffness_y = Block(m->rotor.modal_stiffness, h, h);
+  p.modal_damping_x = Block(m->rotor.modal_damping, 0, h);
+  p.modal_damping_y = Block(m->rotor.modal_damping, h, h);
+  for (const auto& b : m->params.bearings) {
+    p.bearings.push_back({SplitStation(m->rotor.ShapeAt(b.position_m), h), b.stiffness_x_N_per_m,
+                          b.stiffness_y_N_per_m, b.damping_x_N_s_per_m, b.damping_y_N_s_per_m});
+  }
+  for (std::size_t a = 0; a < m->params.ambs.size(); ++a) {
+    const AmbParams& amb = m->params.ambs[a];
+    const bool equivalent = amb.law == AmbForceLaw::kEquivalent;
+    // f = ki i + ks u: the position term is a negative stiffness.
+    const double k = equivalent ? amb.stiffness_N_per_m : -amb.position_gain_N_per_m;
+    const double c = equivalent ? amb.damping_N_s_per_m : 0.0;
+    p.powered_supports.push_back({SplitStation(m->amb_shapes[a], h), k, k, c, c});
+  }
+  p.gyroscopic_xy = Block(m->rotor.gyroscopic, 0, h, h);
+  p.gyroscopic_yx = Block(m->rotor.gyroscopic, h, 0, h);
+  p.gravity_x = Block(m->gravity_force, 0, h);
+  p.gravity_y = Block(m->gravity_force, h, h);
+  p.amb_bias_x = Block(m->amb_bias_force, 0, h);
+  p.amb_bias_y = Block(m->amb_bias_force, h, h);
+  for (const auto& s : m->amb_shapes) p.ambs.push_back(SplitStation(s, h));
+  for (const auto& s : m->tdb_shapes) p.tdbs.push_back(SplitStation(s, h));
+  for (const auto& s : m->sensor_shapes) p.sensors.push_back(SplitStation(s, h));
+  for (const auto& s : m->unbalance_shapes) p.unbalances.push_back(SplitStation(s, h));
+}
+
 }  // namespace
 
 Model BuildModel(const ModelParams& params) {
@@ -90,6 +151,7 @@ Model BuildModel(const ModelParams& params) {
     }
   }
   GravityCompensation(&m);
+  SplitByPlane(&m);
 
   const double dt = params.simulation.step_s;
   m.trigger_step = params.trigger.enabled ? std::llround(params.trigger.time_s / dt) : -1;

@@ -5,6 +5,7 @@
 
 #include "rt_core/eigen_types.hpp"
 #include "rt_core/model_params.hpp"
+#include "rt_core/plane_model.hpp"
 #include "rt_core/reduced_rotor.hpp"
 #include "rt_core/touchdown_bearing.hpp"
 
@@ -29,6 +30,8 @@ struct Model {
   ModalMatrix damping_powered;
   ModalVector amb_bias_force;     ///< gravity compensation of equivalent-law AMBs
   std::vector<std::array<double, 2>> amb_bias_force_N;  ///< per AMB (x, y), for reports
+
+  PlaneModel planes;  ///< the same equations by bending plane, for the step
 
   int state_size = 0;
   std::int64_t trigger_step = -1;  ///< first step without AMB forces (-1: never)

@@ -6,13 +6,16 @@
 
 namespace ambdrop {
 
-/// Rotor in mass-normalised generalized coordinates q (pseudo-modal basis of a flexible rotor,
-/// Jarroux 2019 Sec. 5, or the scaled 4 DOF of a rigid rotor):
+/// Rotor in mass-normalised generalized coordinates q = [q_x | q_y], the first half moving
+/// the rotor in the xz plane only, the second in the yz plane only (pseudo-modal basis of a
+/// flexible rotor, Jarroux 2019 Sec. 5, or the scaled 4 DOF of a rigid rotor):
 ///   q'' + (C + Omega G) q' + (K + dOmega/dt G) q = S^T f.
 /// The mass matrix is the identity. G is the skew gyroscopic matrix per unit spin speed; with the
 /// spin axis taken as (theta_y, -theta_x, 1) it is also the transient matrix KG of Eq. (13).
 struct ReducedRotor {
   int size = 0;
+  ModalVector modal_stiffness;  ///< diagonal of K without the bearings (omega^2; 0 rigid-body)
+  ModalVector modal_damping;    ///< diagonal of C without the bearings (2 zeta omega)
   ModalMatrix stiffness;    ///< K: modal stiffness plus linear bearings
   ModalMatrix damping;      ///< C: modal damping plus linear bearings
   ModalMatrix gyroscopic;   ///< G

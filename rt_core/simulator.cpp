@@ -1,11 +1,29 @@
 #include "rt_core/simulator.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "rt_core/plane_derivative.hpp"
 
 namespace ambdrop {
 
+namespace {
+
+template <std::size_t... H>
+constexpr auto MakeKernelTable(std::index_sequence<H...>) {
+  return std::array<Simulator::DerivativeKernel, sizeof...(H)>{
+      &detail::PlaneDerivative<static_cast<int>(H) + 1>...};
+}
+
+// One compiled kernel per plane size 1..kMaxPlaneModes.
+constexpr auto kKernels = MakeKernelTable(std::make_index_sequence<kMaxPlaneModes>{});
+
+}  // namespace
+
 Simulator::Simulator(const Model& model)
     : model_(model),
+      derivative_(kKernels.at(static_cast<std::size_t>(model.planes.h - 1))),
       step_s_(model.params.simulation.step_s),
       k1_(StateVector::Zero(model.state_size)),
       k2_(StateVector::Zero(model.state_size)),
@@ -33,70 +51,7 @@ State Simulator::InitialState(const ControlInput& input) const {
 
 void Simulator::Derivative(const StateVector& y, const ControlInput& input, StateVector* rate,
                            std::array<TdbForce, kMaxTdbs>* tdb_out) const noexcept {
-  const Model& m = model_;
-  const int n = m.modes();
-  const auto q = y.head(n);
-  const auto qd = y.segment(n, n);
-  const double spin = y(m.spin_index());
-  const double angle = y(m.spin_angle_index());
-
-  // Generalized forces: gravity, then the powered AMBs.
-  ModalVector force = m.gravity_force;
-  if (input.power_on) {
-    force += m.amb_bias_force;
-    for (std::size_t a = 0; a < m.params.ambs.size(); ++a) {
-      const AmbParams& amb = m.params.ambs[a];
-      if (amb.law != AmbForceLaw::kLinearisedCurrents) continue;
-      // f = ki i; the ks u part sits in stiffness_powered.
-      const Eigen::Vector2d f(amb.current_gain_N_per_A * input.current_A[a][0],
-                              amb.current_gain_N_per_A * input.current_A[a][1]);
-      force.noalias() += m.amb_shapes[a].transpose() * f;
-    }
-  }
-
-  // Touchdown bearings: journal motion at each TDB plane → contact forces and race rates.
-  double torque = 0.0;
-  for (std::size_t i = 0; i < m.tdbs.size(); ++i) {
-    const StationShape& s = m.tdb_shapes[i];
-    const Eigen::Vector2d xy = s * q;
-    const Eigen::Vector2d v = s * qd;
-    const JournalMotion journal{xy(0), xy(1), v(0), v(1), spin};
-    TdbForce& out = (*tdb_out)[i];
-    const int offset = m.tdb_state_offset[i];
-    m.tdbs[i]->Evaluate(journal, y.data() + offset, rate->data() + offset, &out);
-    force.noalias() += s.transpose() * Eigen::Vector2d(out.fx_N, out.fy_N);
-    torque += out.torque_on_rotor_N_m;
-  }
-
-  // Spin: the motor holds the speed while powered; afterwards only friction acts (Ip W' = T).
-  const double spin_rate = input.power_on ? 0.0 : torque / m.rotor.polar_inertia_kg_m2;
-
-  // Unbalance, constant- and variable-speed terms (Jarroux 2019 Eq. (13), F_mu).
-  for (std::size_t u = 0; u < m.params.unbalances.size(); ++u) {
-    const UnbalanceParams& ub = m.params.unbalances[u];
-    if (!ub.enabled) continue;
-    const double me = ub.mass_kg * ub.eccentricity_m;
-    const double phase = angle + ub.phase_rad;
-    const double c = std::cos(phase);
-    const double s = std::sin(phase);
-    const Eigen::Vector2d f(me * (spin * spin * c + spin_rate * s),
-                            me * (spin * spin * s - spin_rate * c));
-    force.noalias() += m.unbalance_shapes[u].transpose() * f;
-  }
-
-  // q'' = F - C q' - K q - G (W q' + W' q)   (Jarroux 2019 Eq. (13), M = I).
-  const ModalMatrix& k = input.power_on ? m.stiffness_powered : m.rotor.stiffness;
-  const ModalMatrix& c = input.power_on ? m.damping_powered : m.rotor.damping;
-  ModalVector gyro_arg = spin * qd;
-  gyro_arg += spin_rate * q;
-  auto qdd = rate->segment(n, n);
-  qdd = force;
-  qdd.noalias() -= c * qd;
-  qdd.noalias() -= k * q;
-  qdd.noalias() -= m.rotor.gyroscopic * gyro_arg;
-  rate->head(n) = qd;
-  (*rate)(m.spin_index()) = spin_rate;
-  (*rate)(m.spin_angle_index()) = spin;
+  derivative_(model_, y, input, rate, tdb_out);
 }
 
 StepStatus Simulator::Step(State* state, const ControlInput& input) noexcept {

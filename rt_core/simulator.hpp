@@ -42,8 +42,12 @@ class Simulator {
   void Derivative(const StateVector& y, const ControlInput& input, StateVector* rate,
                   std::array<TdbForce, kMaxTdbs>* tdb_out) const noexcept;
 
+  using DerivativeKernel = void (*)(const Model&, const StateVector&, const ControlInput&,
+                                   StateVector*, std::array<TdbForce, kMaxTdbs>*) noexcept;
+
  private:
   const Model& model_;
+  DerivativeKernel derivative_;
   double step_s_;
   StateVector k1_, k2_, k3_, k4_, stage_;
   std::array<TdbForce, kMaxTdbs> scratch_tdb_{};

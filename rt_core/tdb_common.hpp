@@ -49,16 +49,19 @@ inline double FrictionForce(const FrictionParams& f, double normal_force_N,
 }
 
 /// Inner-race acceleration, Jarroux 2019 Eq. (9), with the Palmgren load torque M1 = f1 fn dm
-/// and a constant drag torque, both opposing the race's rotation (sign regularised like Eq. (11)).
+/// and a constant drag torque, both opposing the race's rotation. Their sign is regularised
+/// algebraically, x / sqrt(1 + x^2) with x = vref * race surface speed: the same smooth sign as
+/// Eq. (11)'s atan at a fraction of the cost.
 inline double RaceAcceleration(const TdbParams& p, double race_speed_rad_s, double friction_N,
                                double normal_force_N) noexcept {
   if (!p.spin.enabled) return 0.0;
   const double inner_race_radius_m = p.journal_radius_m + p.clearance_m;
-  const double sign = (2.0 / std::numbers::pi) *
-                      std::atan(p.friction.regularisation_s_per_m * race_speed_rad_s *
-                                inner_race_radius_m);
-  const double resisting = (p.spin.palmgren_f1 * normal_force_N * p.spin.pitch_diameter_m +
-                            p.spin.drag_torque_N_m) * sign;
+  double resisting = p.spin.palmgren_f1 * normal_force_N * p.spin.pitch_diameter_m +
+                     p.spin.drag_torque_N_m;
+  if (resisting != 0.0) {
+    const double x = p.friction.regularisation_s_per_m * race_speed_rad_s * inner_race_radius_m;
+    resisting *= x / std::sqrt(1.0 + x * x);
+  }
   return (friction_N * inner_race_radius_m - resisting -
           p.spin.rotational_damping_N_m_s * race_speed_rad_s) / p.spin.inertia_kg_m2;
 }

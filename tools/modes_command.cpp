@@ -75,7 +75,8 @@ int RunModesCommand(const ModesOptions& options) {
   // Without --speed-rpm the natural choice is the speed the config runs at before the drop.
   const double speed_rad_s = options.speed_rpm ? *options.speed_rpm * kRadPerSecondPerRpm
                                                : params.simulation.spin_speed_rad_s;
-  const double speed_rpm = speed_rad_s / kRadPerSecondPerRpm;
+  // Echo a given rpm as typed rather than as the round trip through rad/s.
+  const double speed_rpm = options.speed_rpm.value_or(speed_rad_s / kRadPerSecondPerRpm);
 
   ModalAnalysis modes;
   try {

@@ -12,6 +12,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "controller_if/offline_run.hpp"
 #include "io/config_loader.hpp"
@@ -205,8 +206,10 @@ int RunSimCommand(const SimOptions& options) {
   std::fflush(stdout);
   if (!output_error.empty()) fmt::print(stderr, "error: {}\n", output_error);
   if (result.status != StepStatus::kOk) {
-    fmt::print(stderr, "error: simulation failed ({}): {}\n", StatusName(result.status),
-               result.failure_message);
+    // The message may end with its own newline (state dumps do); print exactly one.
+    std::string_view message = result.failure_message;
+    while (!message.empty() && message.back() == '\n') message.remove_suffix(1);
+    fmt::print(stderr, "error: simulation failed ({}): {}\n", StatusName(result.status), message);
     return kExitRunFailed;
   }
   return output_error.empty() ? kExitOk : kExitError;

@@ -1,0 +1,94 @@
+#pragma once
+// The equations of motion evaluated by bending plane with the plane size H fixed at compile
+// time, so every product is a small unrolled kernel. Internal to the simulator.
+#include <array>
+#include <cmath>
+
+#include "rt_core/control_input.hpp"
+#include "rt_core/model.hpp"
+#include "rt_core/touchdown_bearing.hpp"
+
+namespace ambdrop::detail {
+
+template <int H>
+void PlaneDerivative(const Model& m, const StateVector& y, const ControlInput& input,
+                     StateVector* rate, std::array<TdbForce, kMaxTdbs>* tdb_out) noexcept {
+  using Vec = Eigen::Matrix<double, H, 1>;
+  using Mat = Eigen::Matrix<double, H, H>;
+  const auto mat = [](const PlaneMatrix& a) { return Eigen::Map<const Mat>(a.data()); };
+  // Linear supports as station forces, f = -(k u + c u').
+  const auto support = [&](const PlaneSupport& s, const auto& qx, const auto& qy, const auto& vx,
+                           const auto& vy, Vec* fx, Vec* fy) {
+    const auto sx = Eigen::Map<const Vec>(s.shape.sx.data());
+    const auto sy = Eigen::Map<const Vec>(s.shape.sy.data());
+    *fx -= (s.stiffness_x_N_per_m * sx.dot(qx) + s.damping_x_N_s_per_m * sx.dot(vx)) * sx;
+    *fy -= (s.stiffness_y_N_per_m * sy.dot(qy) + s.damping_y_N_s_per_m * sy.dot(vy)) * sy;
+  };
+  const auto vec = [](const PlaneVector& a) { return Eigen::Map<const Vec>(a.data()); };
+  const PlaneModel& p = m.planes;
+  const double* yd = y.data();
+  const Eigen::Map<const Vec> qx(yd), qy(yd + H), vx(yd + 2 * H), vy(yd + 3 * H);
+  const double spin = y(4 * H);
+  const double angle = y(4 * H + 1);
+
+  // Generalized forces: gravity, then the powered AMBs.
+  Vec fx = vec(p.gravity_x);
+  Vec fy = vec(p.gravity_y);
+  for (const PlaneSupport& b : p.bearings) support(b, qx, qy, vx, vy, &fx, &fy);
+  if (input.power_on) {
+    for (const PlaneSupport& b : p.powered_supports) support(b, qx, qy, vx, vy, &fx, &fy);
+    fx += vec(p.amb_bias_x);
+    fy += vec(p.amb_bias_y);
+    for (std::size_t a = 0; a < m.params.ambs.size(); ++a) {
+      const AmbParams& amb = m.params.ambs[a];
+      if (amb.law != AmbForceLaw::kLinearisedCurrents) continue;
+      // f = ki i; the ks u part is a powered support.
+      fx += (amb.current_gain_N_per_A * input.current_A[a][0]) * vec(p.ambs[a].sx);
+      fy += (amb.current_gain_N_per_A * input.current_A[a][1]) * vec(p.ambs[a].sy);
+    }
+  }
+
+  // Touchdown bearings: journal motion at each TDB plane → contact forces and race rates.
+  double torque = 0.0;
+  for (std::size_t i = 0; i < m.tdbs.size(); ++i) {
+    const auto sx = vec(p.tdbs[i].sx);
+    const auto sy = vec(p.tdbs[i].sy);
+    const JournalMotion journal{sx.dot(qx), sy.dot(qy), sx.dot(vx), sy.dot(vy), spin};
+    TdbForce& out = (*tdb_out)[i];
+    const int offset = m.tdb_state_offset[i];
+    m.tdbs[i]->Evaluate(journal, yd + offset, rate->data() + offset, &out);
+    fx += out.fx_N * sx;
+    fy += out.fy_N * sy;
+    torque += out.torque_on_rotor_N_m;
+  }
+
+  // Spin: the motor holds the speed while powered; afterwards only friction acts (Ip W' = T).
+  const double spin_rate = input.power_on ? 0.0 : torque / m.rotor.polar_inertia_kg_m2;
+
+  // Unbalance, constant- and variable-speed terms (Jarroux 2019 Eq. (13), F_mu).
+  for (std::size_t u = 0; u < m.params.unbalances.size(); ++u) {
+    const UnbalanceParams& ub = m.params.unbalances[u];
+    if (!ub.enabled) continue;
+    const double me = ub.mass_kg * ub.eccentricity_m;
+    const double c = std::cos(angle + ub.phase_rad);
+    const double s = std::sin(angle + ub.phase_rad);
+    fx += (me * (spin * spin * c + spin_rate * s)) * vec(p.unbalances[u].sx);
+    fy += (me * (spin * spin * s - spin_rate * c)) * vec(p.unbalances[u].sy);
+  }
+
+  // q'' = F - C q' - K q - G (W q' + W' q)   (Jarroux 2019 Eq. (13), M = I), plane by plane,
+  // with the modal C and K diagonal.
+  const Vec gx = spin * vx + spin_rate * qx;
+  const Vec gy = spin * vy + spin_rate * qy;
+  Eigen::Map<Vec> ax(rate->data() + 2 * H), ay(rate->data() + 3 * H);
+  ax = fx - vec(p.modal_damping_x).cwiseProduct(vx) - vec(p.modal_stiffness_x).cwiseProduct(qx);
+  ax.noalias() -= mat(p.gyroscopic_xy) * gy;
+  ay = fy - vec(p.modal_damping_y).cwiseProduct(vy) - vec(p.modal_stiffness_y).cwiseProduct(qy);
+  ay.noalias() -= mat(p.gyroscopic_yx) * gx;
+  Eigen::Map<Vec>(rate->data()) = vx;
+  Eigen::Map<Vec>(rate->data() + H) = vy;
+  (*rate)(4 * H) = spin_rate;
+  (*rate)(4 * H + 1) = spin;
+}
+
+}  // namespace ambdrop::detail
