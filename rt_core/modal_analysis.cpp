@@ -12,9 +12,23 @@ std::vector<double> FirstN(std::vector<double> v, int count) {
   return v;
 }
 
+// The levitated rotor: linear bearings plus each AMB as the spring/damper it is while powered
+// (equivalent law: k, c; linearised law: the negative stiffness -ks).
+ModelParams WithAmbsAsSupports(const ModelParams& params) {
+  ModelParams p = params;
+  for (const AmbParams& a : params.ambs) {
+    const bool equivalent = a.law == AmbForceLaw::kEquivalent;
+    const double k = equivalent ? a.stiffness_N_per_m : -a.position_gain_N_per_m;
+    const double c = equivalent ? a.damping_N_s_per_m : 0.0;
+    p.bearings.push_back({"amb " + a.name, a.position_m, k, k, c, c});
+  }
+  return p;
+}
+
 }  // namespace
 
-ModalAnalysis AnalyseModes(const ModelParams& params, double spin, int count) {
+ModalAnalysis AnalyseModes(const ModelParams& config, double spin, int count) {
+  const ModelParams params = WithAmbsAsSupports(config);
   ModalAnalysis out;
   const ReducedRotor reduced = BuildReducedRotor(params);
   const int n = reduced.size;
