@@ -19,8 +19,8 @@ void DumpState(const Model& m, const State& s, std::ostringstream& o) {
   for (std::size_t i = 0; i < m.tdbs.size(); ++i) {
     const TdbParams& p = m.tdbs[i]->params();
     const Eigen::Vector2d xy = m.tdb_shapes[i] * s.y.head(n);
-    o << "  tdb " << p.name << ": journal (" << xy(0) << ", " << xy(1) << ") m = "
-      << xy.norm() / p.clearance_m << " clearances; states";
+    o << "  tdb " << p.name << ": journal (" << xy(0) << ", " << xy(1)
+      << ") m = " << xy.norm() / p.clearance_m << " clearances; states";
     for (int k = 0; k < m.tdbs[i]->StateSize(); ++k) o << ' ' << s.y(m.tdb_state_offset[i] + k);
     o << "\n";
   }

@@ -23,13 +23,13 @@ struct AmbParams {
   std::string name;
   double position_m = 0.0;
   AmbForceLaw law = AmbForceLaw::kEquivalent;
-  double stiffness_N_per_m = 0.0;           ///< equivalent law
-  double damping_N_s_per_m = 0.0;           ///< equivalent law
+  double stiffness_N_per_m = 0.0;  ///< equivalent law
+  double damping_N_s_per_m = 0.0;  ///< equivalent law
   /// Equivalent law: add the constant force an integrating controller holds so that the
   /// levitated rotor sits on the magnetic centre under gravity.
   bool gravity_compensation = true;
-  double current_gain_N_per_A = 0.0;        ///< ki, linearised law
-  double position_gain_N_per_m = 0.0;       ///< ks (negative stiffness), linearised law
+  double current_gain_N_per_A = 0.0;           ///< ki, linearised law
+  double position_gain_N_per_m = 0.0;          ///< ks (negative stiffness), linearised law
   std::vector<CurrentSample> current_profile;  ///< linearised law
 };
 

@@ -33,8 +33,8 @@ void ContactLawTdb::Evaluate(const JournalMotion& j, const double* state, double
     normal = std::max(normal, 0.0);
     // Slip of the journal surface over the inner race, Jarroux 2019 Eq. (11).
     const double inner_race_radius = p.journal_radius_m + p.clearance_m;
-    const double slip = g.whirl_speed_m_s + j.spin_rad_s * p.journal_radius_m -
-                        race_speed * inner_race_radius;
+    const double slip =
+        g.whirl_speed_m_s + j.spin_rad_s * p.journal_radius_m - race_speed * inner_race_radius;
     friction = FrictionForce(p.friction, normal, slip);
     const double tangential_on_rotor =
         -friction - p.friction.whirl_damping_N_s_per_m * g.whirl_speed_m_s;

@@ -96,10 +96,9 @@ FeRotor AssembleFeRotor(const RotorParams& rotor, const std::vector<double>& sta
     const auto section_index = static_cast<std::size_t>(
         std::lower_bound(section_end.begin(), section_end.end(), mid) - section_end.begin());
     const ShaftSection& s = rotor.sections[std::min(section_index, rotor.sections.size() - 1)];
-    const PlaneElementMatrices el =
-        TimoshenkoPlaneElement(L, s.outer_diameter_m, s.inner_diameter_m,
-                               s.material.youngs_modulus_Pa, s.material.shear_modulus_Pa,
-                               s.material.density_kg_m3);
+    const PlaneElementMatrices el = TimoshenkoPlaneElement(
+        L, s.outer_diameter_m, s.inner_diameter_m, s.material.youngs_modulus_Pa,
+        s.material.shear_modulus_Pa, s.material.density_kg_m3);
     const Eigen::Matrix4d m = el.translational_mass + el.rotary_mass;
     AddPlaneBlocks(m, t * m * t, e, &fe.mass);
     AddPlaneBlocks(el.stiffness, t * el.stiffness * t, e, &fe.stiffness);
@@ -118,7 +117,8 @@ FeRotor AssembleFeRotor(const RotorParams& rotor, const std::vector<double>& sta
     const double D = s.outer_diameter_m;
     const double d = s.inner_diameter_m;
     fe.mass_kg += s.material.density_kg_m3 * pi / 4.0 * (D * D - d * d) * L;
-    fe.polar_inertia_kg_m2 += s.material.density_kg_m3 * pi / 32.0 * (D * D * D * D - d * d * d * d) * L;
+    fe.polar_inertia_kg_m2 +=
+        s.material.density_kg_m3 * pi / 32.0 * (D * D * D * D - d * d * d * d) * L;
   }
 
   // Rigid discs: m on x, y; Id on the tilts; Ip couples the tilts (Id th_x'' + Ip W th_y' = M_x).

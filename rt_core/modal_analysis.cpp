@@ -32,10 +32,10 @@ ModalAnalysis AnalyseModes(const ModelParams& config, double spin, int count) {
   ModalAnalysis out;
   const ReducedRotor reduced = BuildReducedRotor(params);
   const int n = reduced.size;
-  out.reduced_supported_rad_s = FirstN(
-      DampedNaturalFrequencies(Eigen::MatrixXd::Identity(n, n), reduced.damping,
-                               reduced.stiffness, reduced.gyroscopic, spin),
-      count);
+  out.reduced_supported_rad_s =
+      FirstN(DampedNaturalFrequencies(Eigen::MatrixXd::Identity(n, n), reduced.damping,
+                                      reduced.stiffness, reduced.gyroscopic, spin),
+             count);
   if (params.rotor.kind == RotorKind::kRigid) {
     // The rigid form is already complete: its "full" model is the reduced one.
     out.free_free_rad_s = FirstN(std::vector<double>(4, 0.0), count);

@@ -30,11 +30,10 @@ ReducedRotor ReduceFeRotor(const FeRotor& fe, const Eigen::MatrixXd& kb, const E
                            int modes, double zeta) {
   const int nodes = static_cast<int>(fe.node_positions_m.size());
   if (modes < 2 || modes > kMaxModes || modes > fe.dofs() || modes % 2 != 0) {
-    throw std::invalid_argument("rotor.modes = " + std::to_string(modes) +
-                                ": expected an even number from 2 to " +
-                                std::to_string(std::min(kMaxModes, fe.dofs())) +
-                                " (modes come in x/y pairs; the mesh has " +
-                                std::to_string(fe.dofs()) + " DOF)");
+    throw std::invalid_argument(
+        "rotor.modes = " + std::to_string(modes) + ": expected an even number from 2 to " +
+        std::to_string(std::min(kMaxModes, fe.dofs())) +
+        " (modes come in x/y pairs; the mesh has " + std::to_string(fe.dofs()) + " DOF)");
   }
   // The shaft and discs do not couple the two bending planes, so the free-free modes are those
   // of the xz plane (x, theta_y per node) and their copies in the yz plane (y, -theta_x). Keeping
@@ -58,9 +57,9 @@ ReducedRotor ReduceFeRotor(const FeRotor& fe, const Eigen::MatrixXd& kb, const E
     for (int node = 0; node < nodes; ++node) {
       const double w = eig.eigenvectors()(2 * node, k);
       const double slope = eig.eigenvectors()(2 * node + 1, k);
-      r.basis(4 * node + 0, k) = w;           // x-plane mode k
+      r.basis(4 * node + 0, k) = w;  // x-plane mode k
       r.basis(4 * node + 3, k) = slope;
-      r.basis(4 * node + 1, h + k) = w;       // its yz copy
+      r.basis(4 * node + 1, h + k) = w;  // its yz copy
       r.basis(4 * node + 2, h + k) = -slope;
     }
   }
@@ -118,8 +117,10 @@ ReducedRotor RigidReducedRotor(const RigidRotorParams& rigid,
   r.damping = ModalMatrix::Zero(4, 4);
   for (const auto& b : bearings) {
     const StationShape s = r.ShapeAt(b.position_m);
-    const Eigen::Matrix2d k = Eigen::Vector2d(b.stiffness_x_N_per_m, b.stiffness_y_N_per_m).asDiagonal();
-    const Eigen::Matrix2d c = Eigen::Vector2d(b.damping_x_N_s_per_m, b.damping_y_N_s_per_m).asDiagonal();
+    const Eigen::Matrix2d k =
+        Eigen::Vector2d(b.stiffness_x_N_per_m, b.stiffness_y_N_per_m).asDiagonal();
+    const Eigen::Matrix2d c =
+        Eigen::Vector2d(b.damping_x_N_s_per_m, b.damping_y_N_s_per_m).asDiagonal();
     r.stiffness += s.transpose() * k * s;
     r.damping += s.transpose() * c * s;
   }

@@ -44,7 +44,9 @@ void GravityCompensation(Model* m) {
   m->amb_bias_force = b * f;
 }
 
-PlaneVector Block(const ModalVector& v, int offset, int h) { return v.segment(offset, h); }
+PlaneVector Block(const ModalVector& v, int offset, int h) {
+  return v.segment(offset, h);
+}
 
 PlaneMatrix Block(const ModalMatrix& a, int row, int col, int h) {
   return a.block(row, col, h, h);
@@ -113,7 +115,8 @@ Model BuildModel(const ModelParams& params) {
   CheckCount(params.sensors.size(), kMaxSensors, "sensors");
   CheckCount(params.unbalances.size(), kMaxUnbalances, "unbalances");
   CheckCount(params.bearings.size(), kMaxLinearBearings, "linear bearings");
-  if (!(params.simulation.step_s > 0.0)) throw std::invalid_argument("simulation.step_s must be > 0");
+  if (!(params.simulation.step_s > 0.0))
+    throw std::invalid_argument("simulation.step_s must be > 0");
 
   Model m;
   m.params = params;
@@ -122,7 +125,8 @@ Model BuildModel(const ModelParams& params) {
   for (const auto& a : params.ambs) m.amb_shapes.push_back(m.rotor.ShapeAt(a.position_m));
   for (const auto& t : params.tdbs) m.tdb_shapes.push_back(m.rotor.ShapeAt(t.position_m));
   for (const auto& s : params.sensors) m.sensor_shapes.push_back(m.rotor.ShapeAt(s.position_m));
-  for (const auto& u : params.unbalances) m.unbalance_shapes.push_back(m.rotor.ShapeAt(u.position_m));
+  for (const auto& u : params.unbalances)
+    m.unbalance_shapes.push_back(m.rotor.ShapeAt(u.position_m));
 
   m.state_size = 2 * n + 2;
   for (const auto& t : params.tdbs) {

@@ -24,11 +24,11 @@ struct Model {
   std::vector<std::unique_ptr<TouchdownBearing>> tdbs;
   std::vector<int> tdb_state_offset;  ///< into State::y
 
-  ModalVector gravity_force;      ///< S^T f of gravity, constant
+  ModalVector gravity_force;  ///< S^T f of gravity, constant
   /// K and C while the AMBs are powered: rotor plus the equivalent-law AMBs projected on q.
   ModalMatrix stiffness_powered;
   ModalMatrix damping_powered;
-  ModalVector amb_bias_force;     ///< gravity compensation of equivalent-law AMBs
+  ModalVector amb_bias_force;  ///< gravity compensation of equivalent-law AMBs
   std::vector<std::array<double, 2>> amb_bias_force_N;  ///< per AMB (x, y), for reports
 
   PlaneModel planes;  ///< the same equations by bending plane, for the step
@@ -47,6 +47,7 @@ struct Model {
 Model BuildModel(const ModelParams& params);
 
 /// Static equilibrium q of the powered rotor for the given AMB currents (zero if singular).
-ModalVector PoweredEquilibrium(const Model& model, const std::array<std::array<double, 2>, kMaxAmbs>& current_A);
+ModalVector PoweredEquilibrium(const Model& model,
+                               const std::array<std::array<double, 2>, kMaxAmbs>& current_A);
 
 }  // namespace ambdrop

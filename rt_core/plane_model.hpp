@@ -35,7 +35,7 @@ struct PlaneModel {
   PlaneVector modal_stiffness_x, modal_stiffness_y, modal_damping_x, modal_damping_y;
   std::vector<PlaneSupport> bearings;          ///< always acting
   std::vector<PlaneSupport> powered_supports;  ///< AMB stiffness/damping while powered
-  PlaneMatrix gyroscopic_xy;  ///< G block: rows q_x, columns q_y
+  PlaneMatrix gyroscopic_xy;                   ///< G block: rows q_x, columns q_y
   PlaneMatrix gyroscopic_yx;
   PlaneVector gravity_x, gravity_y;
   PlaneVector amb_bias_x, amb_bias_y;

@@ -16,9 +16,9 @@ struct ReducedRotor {
   int size = 0;
   ModalVector modal_stiffness;  ///< diagonal of K without the bearings (omega^2; 0 rigid-body)
   ModalVector modal_damping;    ///< diagonal of C without the bearings (2 zeta omega)
-  ModalMatrix stiffness;    ///< K: modal stiffness plus linear bearings
-  ModalMatrix damping;      ///< C: modal damping plus linear bearings
-  ModalMatrix gyroscopic;   ///< G
+  ModalMatrix stiffness;        ///< K: modal stiffness plus linear bearings
+  ModalMatrix damping;          ///< C: modal damping plus linear bearings
+  ModalMatrix gyroscopic;       ///< G
   ModalVector free_frequencies_rad_s;  ///< of the retained free-free modes (0 for rigid-body)
   /// Generalized force of a unit acceleration field along +y (basis^T M e_y): gravity is
   /// -g times this.

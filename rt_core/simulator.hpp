@@ -7,10 +7,10 @@
 
 namespace ambdrop {
 
-enum class [[nodiscard]] StepStatus {
-  kOk,
-  kNonFinite,        ///< a state became NaN or infinite
-  kExcursionBound,   ///< a journal left its TDB by more than the configured bound
+enum class [[nodiscard]] StepStatus{
+    kOk,
+    kNonFinite,       ///< a state became NaN or infinite
+    kExcursionBound,  ///< a journal left its TDB by more than the configured bound
 };
 
 /// What the outside world sees after a step.
@@ -43,7 +43,7 @@ class Simulator {
                   std::array<TdbForce, kMaxTdbs>* tdb_out) const noexcept;
 
   using DerivativeKernel = void (*)(const Model&, const StateVector&, const ControlInput&,
-                                   StateVector*, std::array<TdbForce, kMaxTdbs>*) noexcept;
+                                    StateVector*, std::array<TdbForce, kMaxTdbs>*) noexcept;
 
  private:
   const Model& model_;

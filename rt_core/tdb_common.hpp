@@ -11,8 +11,8 @@ namespace ambdrop {
 /// Journal position relative to the TDB centre (which misalignment moves off the magnetic
 /// centre), split into radial and tangential parts.
 struct ContactGeometry {
-  double nx = 1.0, ny = 0.0;    ///< unit normal from the TDB centre towards the journal
-  double radius_m = 0.0;        ///< journal centre distance from the TDB centre
+  double nx = 1.0, ny = 0.0;  ///< unit normal from the TDB centre towards the journal
+  double radius_m = 0.0;      ///< journal centre distance from the TDB centre
   double radial_speed_m_s = 0.0;
   double whirl_speed_m_s = 0.0;  ///< tangential speed of the journal centre, along +spin
 };
@@ -56,14 +56,15 @@ inline double RaceAcceleration(const TdbParams& p, double race_speed_rad_s, doub
                                double normal_force_N) noexcept {
   if (!p.spin.enabled) return 0.0;
   const double inner_race_radius_m = p.journal_radius_m + p.clearance_m;
-  double resisting = p.spin.palmgren_f1 * normal_force_N * p.spin.pitch_diameter_m +
-                     p.spin.drag_torque_N_m;
+  double resisting =
+      p.spin.palmgren_f1 * normal_force_N * p.spin.pitch_diameter_m + p.spin.drag_torque_N_m;
   if (resisting != 0.0) {
     const double x = p.friction.regularisation_s_per_m * race_speed_rad_s * inner_race_radius_m;
     resisting *= x / std::sqrt(1.0 + x * x);
   }
   return (friction_N * inner_race_radius_m - resisting -
-          p.spin.rotational_damping_N_m_s * race_speed_rad_s) / p.spin.inertia_kg_m2;
+          p.spin.rotational_damping_N_m_s * race_speed_rad_s) /
+         p.spin.inertia_kg_m2;
 }
 
 }  // namespace ambdrop

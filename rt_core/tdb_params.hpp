@@ -6,11 +6,11 @@ namespace ambdrop {
 /// Contact-law TDB, Jarroux 2019 Eq. (12): ribbon (keq, ceq) until crushed by urd, then the ball
 /// bearing (kbrg, cbrg) in series with the crushed ribbon's static force keq*urd.
 struct ContactLawParams {
-  double bearing_stiffness_N_per_m = 0.0;   ///< kbrg
-  double bearing_damping_N_s_per_m = 0.0;   ///< cbrg
-  double ribbon_stiffness_N_per_m = 0.0;    ///< keq (ribbon and bearing in series)
-  double ribbon_damping_N_s_per_m = 0.0;    ///< ceq
-  double ribbon_crushing_m = 0.0;           ///< urd, ribbon crushing capacity
+  double bearing_stiffness_N_per_m = 0.0;  ///< kbrg
+  double bearing_damping_N_s_per_m = 0.0;  ///< cbrg
+  double ribbon_stiffness_N_per_m = 0.0;   ///< keq (ribbon and bearing in series)
+  double ribbon_damping_N_s_per_m = 0.0;   ///< ceq
+  double ribbon_crushing_m = 0.0;          ///< urd, ribbon crushing capacity
 };
 
 enum class FrictionLaw {
@@ -29,12 +29,12 @@ struct FrictionParams {
 
 /// TDB rotation, Jarroux 2019 Eq. (9): Ieq dOmega/dt + Phi Omega = ft Rir - M1.
 struct TdbSpinParams {
-  bool enabled = true;                        ///< false: the inner race stays at rest
-  double inertia_kg_m2 = 2.2e-3;              ///< Ieq, inner race + balls
-  double rotational_damping_N_m_s = 0.0;      ///< Phi
-  double palmgren_f1 = 0.0;                   ///< M1 = f1 * fn * dm (Palmgren / Harris)
-  double pitch_diameter_m = 0.0;              ///< dm
-  double drag_torque_N_m = 0.0;               ///< constant drag torque (seals, windage)
+  bool enabled = true;                    ///< false: the inner race stays at rest
+  double inertia_kg_m2 = 2.2e-3;          ///< Ieq, inner race + balls
+  double rotational_damping_N_m_s = 0.0;  ///< Phi
+  double palmgren_f1 = 0.0;               ///< M1 = f1 * fn * dm (Palmgren / Harris)
+  double pitch_diameter_m = 0.0;          ///< dm
+  double drag_torque_N_m = 0.0;           ///< constant drag torque (seals, windage)
 };
 
 /// Offset of the TDB centre from the magnetic centre (Jarroux 2019, Sec. 4).

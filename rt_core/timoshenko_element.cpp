@@ -53,9 +53,9 @@ PlaneElementMatrices TimoshenkoPlaneElement(double L, double D, double d, double
     const double m8 = (4 + 5 * phi + 10 * phi * phi) * L * L;
     const double m9 = (1 + 5 * phi - 5 * phi * phi) * L * L;
     Eigen::Matrix4d r;
-    r << 36, m7, -36, m7,  //
-        m7, m8, -m7, -m9,  //
-        -36, -m7, 36, -m7, //
+    r << 36, m7, -36, m7,   //
+        m7, m8, -m7, -m9,   //
+        -36, -m7, 36, -m7,  //
         m7, -m9, -m7, m8;
     r /= 30.0 * p1 * p1 * L;
     out.rotary_mass = rho * inertia * r;

@@ -8,9 +8,9 @@ namespace ambdrop {
 /// Phi = 12 E I / (kappa G A L^2) (Friswell et al., Dynamics of Rotating Machines, Sec. 5.4;
 /// Przemieniecki's element).
 struct PlaneElementMatrices {
-  Eigen::Matrix4d stiffness;        ///< bending + shear
+  Eigen::Matrix4d stiffness;  ///< bending + shear
   Eigen::Matrix4d translational_mass;
-  Eigen::Matrix4d rotary_mass;      ///< rotary inertia rho*I
+  Eigen::Matrix4d rotary_mass;  ///< rotary inertia rho*I
   /// Polar counterpart rho*J of the rotary matrix: the gyroscopic block between the planes.
   Eigen::Matrix4d polar_rotary;
 };

@@ -14,7 +14,7 @@ struct JournalMotion {
 
 /// What a TDB does to the rotor, and what it reports.
 struct TdbForce {
-  double fx_N = 0.0;                ///< force on the rotor
+  double fx_N = 0.0;  ///< force on the rotor
   double fy_N = 0.0;
   double torque_on_rotor_N_m = 0.0;  ///< about +z, from contact friction
   double normal_force_N = 0.0;       ///< rotor / inner-race normal force (>= 0)

@@ -34,7 +34,8 @@ TEST(Energy, ConservedWithoutDampingOrContactOverOneSecond) {
   // Whirl in the four lowest supported modes (the bearing modes), as a drop or knock would.
   const Eigen::MatrixXd k = model.rotor.stiffness;
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> modes(k);
-  for (int i = 0; i < 4; ++i) s.y.segment(model.modes(), model.modes()) += 1e-3 * modes.eigenvectors().col(i);
+  for (int i = 0; i < 4; ++i)
+    s.y.segment(model.modes(), model.modes()) += 1e-3 * modes.eigenvectors().col(i);
   const double e0 = Energy(model, s);
   ASSERT_GT(e0, 0.0);
   double worst = 0.0;
@@ -48,8 +49,8 @@ TEST(Energy, ConservedWithoutDampingOrContactOverOneSecond) {
 }
 
 TEST(Energy, ModalDampingOnlyEverRemovesEnergy) {
-  ModelParams p = testing::LoadTestConfig(
-      "friswell_5_9_1.toml", {"rotor.modes=12", "rotor.modal_damping_ratio=0.02"});
+  ModelParams p = testing::LoadTestConfig("friswell_5_9_1.toml",
+                                          {"rotor.modes=12", "rotor.modal_damping_ratio=0.02"});
   const Model model = BuildModel(p);
   Simulator sim(model);
   State s = sim.InitialState();

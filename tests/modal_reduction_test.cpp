@@ -50,7 +50,7 @@ TEST(ModalReduction, BasisIsMassNormalisedWithFourRigidBodyModes) {
 TEST(Seed000Rotor, ConfigMatchesThePublishedRig) {
   const ModelParams p = testing::LoadTestConfig("jarroux2019_industrial.toml");
   const ReducedRotor r = BuildReducedRotor(p);
-  EXPECT_NEAR(r.mass_kg, 200.0, 0.03 * 200.0);               // Jarroux 2019 Sec. 5
+  EXPECT_NEAR(r.mass_kg, 200.0, 0.03 * 200.0);  // Jarroux 2019 Sec. 5
   EXPECT_NEAR(r.polar_inertia_kg_m2, 0.97, 0.03 * 0.97);
   EXPECT_NEAR(r.length_m, 1.150, 1e-9);
   ASSERT_EQ(p.ambs.size(), 2u);

@@ -67,11 +67,11 @@ TEST(RigidDrop, SettlesAtTheContactLawStaticPenetration) {
     sim.Observe(s, &obs);
     const ContactLawParams& c = p.tdbs[0].contact_law;
     const double share_N = 100.0 * 9.81 / 2.0;
-    const double expected = share_N < c.ribbon_stiffness_N_per_m * c.ribbon_crushing_m
-                                ? share_N / c.ribbon_stiffness_N_per_m
-                                : c.ribbon_crushing_m +
-                                      (share_N - c.ribbon_stiffness_N_per_m * c.ribbon_crushing_m) /
-                                          c.bearing_stiffness_N_per_m;
+    const double expected =
+        share_N < c.ribbon_stiffness_N_per_m * c.ribbon_crushing_m
+            ? share_N / c.ribbon_stiffness_N_per_m
+            : c.ribbon_crushing_m + (share_N - c.ribbon_stiffness_N_per_m * c.ribbon_crushing_m) /
+                                        c.bearing_stiffness_N_per_m;
     EXPECT_NEAR(obs.tdb[0].penetration_m, expected, 1e-6 * expected) << "urd " << crushing_m;
     EXPECT_NEAR(obs.tdb[0].normal_force_N, share_N, 1e-5 * share_N);
   }

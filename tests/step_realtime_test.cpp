@@ -74,9 +74,9 @@ TEST(Step, RepeatedRunsAreBitIdentical) {
 }
 
 TEST(Step, DivergenceIsReportedNotHidden) {
-  ModelParams p = testing::LoadTestConfig("jarroux2019_industrial.toml",
-                                          {"simulation.step_s=2e-3", "simulation.output_interval_s=2e-3",
-                                           "trigger.time_s=0.0"});
+  ModelParams p = testing::LoadTestConfig(
+      "jarroux2019_industrial.toml",
+      {"simulation.step_s=2e-3", "simulation.output_interval_s=2e-3", "trigger.time_s=0.0"});
   const Model model = BuildModel(p);
   Simulator sim(model);
   State s = sim.InitialState();

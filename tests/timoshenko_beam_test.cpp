@@ -42,9 +42,9 @@ double FrequencyDeterminant(const Beam& b, double w) {
   const double ch = std::cosh(a * L), sh = std::sinh(a * L), c = std::cos(bb * L),
                s = std::sin(bb * L);
   Eigen::Matrix4d m;
-  m << ga * a, 0, gb * bb, 0,                               //
-      0, a - ga, 0, bb + gb,                                //
-      ga * a * ch, ga * a * sh, gb * bb * c, gb * bb * s,   //
+  m << ga * a, 0, gb * bb, 0,                              //
+      0, a - ga, 0, bb + gb,                               //
+      ga * a * ch, ga * a * sh, gb * bb * c, gb * bb * s,  //
       (a - ga) * sh, (a - ga) * ch, -(bb + gb) * s, (bb + gb) * c;
   // Scale out the growth of cosh so the sign change is found cleanly.
   return m.determinant() / ch;
@@ -77,8 +77,7 @@ std::vector<double> AnalyticalFrequencies(const Beam& b, int count) {
 
 std::vector<double> FeFrequencies(const Beam& b, int elements, int count) {
   RotorParams rotor;
-  rotor.sections.push_back(
-      {b.length_m, b.diameter_m, 0.0, Material{b.E, b.G, b.rho}, elements});
+  rotor.sections.push_back({b.length_m, b.diameter_m, 0.0, Material{b.E, b.G, b.rho}, elements});
   const FeRotor fe = AssembleFeRotor(rotor, {});
   const std::vector<double> all = UndampedNaturalFrequencies(fe.mass, fe.stiffness);
   // Four rigid-body zeros, then each bending frequency twice (x and y planes).
@@ -90,7 +89,8 @@ std::vector<double> FeFrequencies(const Beam& b, int elements, int count) {
 TEST(TimoshenkoBeam, SlenderBeamMatchesEulerBernoulli) {
   const Beam b{1.0, 0.01, 211e9, 81.2e9, 7810};
   const double euler = 4.730040744862704 * 4.730040744862704 *
-                       std::sqrt(b.E * b.inertia() / (b.rho * b.area())) / (b.length_m * b.length_m);
+                       std::sqrt(b.E * b.inertia() / (b.rho * b.area())) /
+                       (b.length_m * b.length_m);
   const std::vector<double> w = AnalyticalFrequencies(b, 1);
   EXPECT_NEAR(w[0] / euler, 1.0, 1e-3);  // shear and rotary inertia matter little at L/D = 100
   EXPECT_LT(w[0], euler);                // ...but they only ever lower the frequency
@@ -105,7 +105,8 @@ TEST(TimoshenkoBeam, FreeFreeFrequenciesConvergeToAnalytical) {
   for (int elements : {2, 4, 8, 16, 32}) {
     fe.push_back(FeFrequencies(b, elements, count));
     double error = 0.0;
-    for (int i = 0; i < count; ++i) error = std::max(error, std::abs(fe.back()[i] / exact[i] - 1.0));
+    for (int i = 0; i < count; ++i)
+      error = std::max(error, std::abs(fe.back()[i] / exact[i] - 1.0));
     EXPECT_LT(error, previous_error) << elements << " elements";
     previous_error = error;
   }
@@ -122,7 +123,8 @@ TEST(TimoshenkoBeam, FreeFreeFrequenciesConvergeToAnalytical) {
   }
   // Shear deformation is in the model: an Euler-Bernoulli beam would be >5 % stiffer here.
   const double euler = 4.730040744862704 * 4.730040744862704 *
-                       std::sqrt(b.E * b.inertia() / (b.rho * b.area())) / (b.length_m * b.length_m);
+                       std::sqrt(b.E * b.inertia() / (b.rho * b.area())) /
+                       (b.length_m * b.length_m);
   EXPECT_LT(exact[0], 0.95 * euler);
 }
 

@@ -32,8 +32,12 @@ void RunSteps(benchmark::State& bench, bool dropped) {
       benchmark::Counter(static_cast<double>(steps) * step_s, benchmark::Counter::kIsRate);
 }
 
-void BM_StepLevitated(benchmark::State& s) { RunSteps(s, false); }
-void BM_StepDropped(benchmark::State& s) { RunSteps(s, true); }
+void BM_StepLevitated(benchmark::State& s) {
+  RunSteps(s, false);
+}
+void BM_StepDropped(benchmark::State& s) {
+  RunSteps(s, true);
+}
 BENCHMARK(BM_StepLevitated);
 BENCHMARK(BM_StepDropped);
 

@@ -44,8 +44,14 @@ int posix_memalign(void** out, std::size_t alignment, std::size_t size) {
 
 namespace ambdrop::testing {
 
-MallocGuard::MallocGuard() : start_(count) { ++armed; }
-MallocGuard::~MallocGuard() { --armed; }
-std::int64_t MallocGuard::allocations() const { return count - start_; }
+MallocGuard::MallocGuard() : start_(count) {
+  ++armed;
+}
+MallocGuard::~MallocGuard() {
+  --armed;
+}
+std::int64_t MallocGuard::allocations() const {
+  return count - start_;
+}
 
 }  // namespace ambdrop::testing
