@@ -3,17 +3,30 @@
 #include <cmath>
 
 #include "controller_if/current_profile.hpp"
+#include "rt_core/amb_force.hpp"
 #include "controller_if/state_dump.hpp"
 
 namespace ambdrop {
 namespace {
 
+// Scheduled full power failure: before the trigger every AMB follows its current profile;
+// after it the motor is off and each AMB's force fades with its flux decay (or vanishes),
+// its currents frozen at their values at the trigger.
 ControlInput InputAt(const Model& model, std::int64_t step) {
-  ControlInput in;
-  in.power_on = model.trigger_step < 0 || step < model.trigger_step;
-  const double t = step * model.params.simulation.step_s;
+  const bool powered = model.trigger_step < 0 || step < model.trigger_step;
+  ControlInput in = powered ? ControlInput::Powered() : ControlInput::PowerOff();
+  const double dt = model.params.simulation.step_s;
+  const double t = step * dt;
   for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
-    in.current_A[a] = CurrentAt(model.params.ambs[a].current_profile, t);
+    const AmbParams& amb = model.params.ambs[a];
+    if (powered) {
+      in.amb[a].current_A = CurrentAt(amb.current_profile, t);
+    } else {
+      const double trigger_s = model.trigger_step * dt;
+      in.amb[a].current_A = CurrentAt(amb.current_profile, trigger_s);
+      const double scale = FluxDecayForceScale(amb, t - trigger_s);
+      in.amb[a].force_scale = {scale, scale};
+    }
   }
   return in;
 }

@@ -1,4 +1,5 @@
 #pragma once
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -8,8 +9,27 @@ enum class AmbForceLaw {
   /// Equivalent stiffness and damping per axis from the controller's transfer function at the
   /// running speed (Jarroux 2019, Sec. 5): f = -k u - c du/dt (+ gravity bias).
   kEquivalent,
-  /// Linearised actuator, f = ki i + ks u, with coil currents from a profile.
+  /// Linearised actuator, f = ki i + ks u (ks > 0 destabilises), control current i.
   kLinearisedCurrents,
+  /// Differential-driving electromagnet pair from its geometry (seed 003):
+  /// f = k ((I0 + i)^2 / (g0 - u)^2 - (I0 - i)^2 / (g0 + u)^2), k = mu0 N^2 A cos(alpha) / 4.
+  kElectromagnet,
+};
+
+/// Geometry of one axis of a differential-driving heteropolar AMB (seed 003, Sec. 2).
+struct ElectromagnetParams {
+  double pole_area_m2 = 0.0;        ///< A, one pole face
+  double turns = 0.0;               ///< N, per coil
+  double nominal_gap_m = 0.0;       ///< g0, air gap with the rotor centred
+  double bias_current_A = 0.0;      ///< I0
+  double pole_half_angle_rad = 0.3926990816987241;  ///< alpha: 22.5 deg for an 8-pole stator
+};
+
+/// After power loss the coil currents decay as exp(-t/tau) (the coils' L/R and the
+/// amplifier's discharge), so the force, quadratic in the currents, decays as exp(-2t/tau).
+struct FluxDecayParams {
+  bool enabled = false;
+  double time_constant_s = 0.0;  ///< tau
 };
 
 /// Control currents of one radial AMB at one instant (linear interpolation in between).
@@ -30,7 +50,13 @@ struct AmbParams {
   bool gravity_compensation = true;
   double current_gain_N_per_A = 0.0;           ///< ki, linearised law
   double position_gain_N_per_m = 0.0;          ///< ks (negative stiffness), linearised law
-  std::vector<CurrentSample> current_profile;  ///< linearised law
+  std::vector<CurrentSample> current_profile;  ///< control currents when no controller runs
+  ElectromagnetParams electromagnet;           ///< electromagnet law
+  /// Amplifier limit on the control current |i| (A); the electromagnet law further keeps both
+  /// coil currents I0 +- i within [0, limit]. Infinite: no limit.
+  double current_limit_A = std::numeric_limits<double>::infinity();
+  FluxDecayParams flux_decay;
+  std::string sensor;  ///< sensor plane that feeds this AMB's controller (default: same name)
 };
 
 }  // namespace ambdrop

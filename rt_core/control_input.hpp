@@ -5,11 +5,26 @@
 
 namespace ambdrop {
 
+/// What drives one AMB during a step.
+struct AmbDrive {
+  std::array<double, 2> current_A{};  ///< control current (x, y), current-driven laws
+  /// Scale on the axis force: 1 powered, 0 without power, in between while the flux decays.
+  std::array<double, 2> force_scale{1.0, 1.0};
+};
+
 /// What the controller side hands the physics for one step (zero-order hold over the step).
 struct ControlInput {
-  bool power_on = true;  ///< false after the shutdown trigger: AMB forces removed
-  /// Control currents (x, y) per AMB, used by the linearised-currents force law.
-  std::array<std::array<double, 2>, kMaxAmbs> current_A{};
+  bool motor_on = true;  ///< the drive holds the spin speed; off after the shutdown trigger
+  std::array<AmbDrive, kMaxAmbs> amb{};
+
+  /// Everything powered (the default) or everything off (after a full power failure).
+  static ControlInput Powered() { return ControlInput{}; }
+  static ControlInput PowerOff() {
+    ControlInput in;
+    in.motor_on = false;
+    for (AmbDrive& a : in.amb) a.force_scale = {0.0, 0.0};
+    return in;
+  }
 };
 
 }  // namespace ambdrop

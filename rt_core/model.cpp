@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "rt_core/amb_force.hpp"
 #include "rt_core/modal_reduction.hpp"
 #include "rt_core/tdb_factory.hpp"
 
@@ -26,7 +27,7 @@ void GravityCompensation(Model* m) {
   std::vector<int> compensated;
   for (int a = 0; a < static_cast<int>(m->params.ambs.size()); ++a) {
     const AmbParams& amb = m->params.ambs[a];
-    if (amb.law == AmbForceLaw::kEquivalent && amb.gravity_compensation) compensated.push_back(a);
+    if (amb.law != AmbForceLaw::kEquivalent || amb.gravity_compensation) compensated.push_back(a);
   }
   m->amb_bias_force = ModalVector::Zero(n);
   m->amb_bias_force_N.assign(m->params.ambs.size(), {0.0, 0.0});
@@ -40,8 +41,12 @@ void GravityCompensation(Model* m) {
   const Eigen::VectorXd kg = k_inv.solve(Eigen::VectorXd(m->gravity_force));
   const Eigen::MatrixXd a = b.transpose() * kb;
   const Eigen::VectorXd f = a.completeOrthogonalDecomposition().solve(-(b.transpose() * kg));
-  for (int i = 0; i < na; ++i) m->amb_bias_force_N[compensated[i]] = {0.0, f(i)};
-  m->amb_bias_force = b * f;
+  for (int i = 0; i < na; ++i) {
+    const int a = compensated[i];
+    m->amb_bias_force_N[a] = {0.0, f(i)};
+    // Only the equivalent law applies it by itself; the others get it through their currents.
+    if (m->params.ambs[a].law == AmbForceLaw::kEquivalent) m->amb_bias_force += f(i) * b.col(i);
+  }
 }
 
 PlaneVector Block(const ModalVector& v, int offset, int h) {
@@ -89,19 +94,15 @@ void SplitByPlane(Model* m) {
   }
   for (std::size_t a = 0; a < m->params.ambs.size(); ++a) {
     const AmbParams& amb = m->params.ambs[a];
-    const bool equivalent = amb.law == AmbForceLaw::kEquivalent;
-    // f = ki i + ks u: the position term is a negative stiffness.
-    const double k = equivalent ? amb.stiffness_N_per_m : -amb.position_gain_N_per_m;
-    const double c = equivalent ? amb.damping_N_s_per_m : 0.0;
-    p.powered_supports.push_back({SplitStation(m->amb_shapes[a], h), k, k, c, c});
+    const bool biased = amb.law == AmbForceLaw::kEquivalent && amb.gravity_compensation;
+    p.ambs.push_back({SplitStation(m->amb_shapes[a], h), amb,
+                      biased ? m->amb_bias_force_N[a][0] : 0.0,
+                      biased ? m->amb_bias_force_N[a][1] : 0.0});
   }
   p.gyroscopic_xy = Block(m->rotor.gyroscopic, 0, h, h);
   p.gyroscopic_yx = Block(m->rotor.gyroscopic, h, 0, h);
   p.gravity_x = Block(m->gravity_force, 0, h);
   p.gravity_y = Block(m->gravity_force, h, h);
-  p.amb_bias_x = Block(m->amb_bias_force, 0, h);
-  p.amb_bias_y = Block(m->amb_bias_force, h, h);
-  for (const auto& s : m->amb_shapes) p.ambs.push_back(SplitStation(s, h));
   for (const auto& s : m->tdb_shapes) p.tdbs.push_back(SplitStation(s, h));
   for (const auto& s : m->sensor_shapes) p.sensors.push_back(SplitStation(s, h));
   for (const auto& s : m->unbalance_shapes) p.unbalances.push_back(SplitStation(s, h));
@@ -146,12 +147,18 @@ Model BuildModel(const ModelParams& params) {
   for (std::size_t a = 0; a < params.ambs.size(); ++a) {
     const AmbParams& amb = params.ambs[a];
     const StationShape& s = m.amb_shapes[a];
-    if (amb.law == AmbForceLaw::kEquivalent) {
-      m.stiffness_powered += amb.stiffness_N_per_m * s.transpose() * s;
-      m.damping_powered += amb.damping_N_s_per_m * s.transpose() * s;
-    } else {
-      // f = ki i + ks u: the position term is a negative stiffness.
-      m.stiffness_powered -= amb.position_gain_N_per_m * s.transpose() * s;
+    switch (amb.law) {
+      case AmbForceLaw::kEquivalent:
+        m.stiffness_powered += amb.stiffness_N_per_m * s.transpose() * s;
+        m.damping_powered += amb.damping_N_s_per_m * s.transpose() * s;
+        break;
+      case AmbForceLaw::kLinearisedCurrents:
+        // f = ki i + ks u: the position term is a negative stiffness.
+        m.stiffness_powered -= amb.position_gain_N_per_m * s.transpose() * s;
+        break;
+      case AmbForceLaw::kElectromagnet:
+        m.stiffness_powered -= ElectromagnetPositionGain(amb.electromagnet) * s.transpose() * s;
+        break;
     }
   }
   GravityCompensation(&m);
@@ -163,16 +170,17 @@ Model BuildModel(const ModelParams& params) {
   return m;
 }
 
-ModalVector PoweredEquilibrium(const Model& m,
-                               const std::array<std::array<double, 2>, kMaxAmbs>& current_A) {
+ModalVector PoweredEquilibrium(const Model& m, const ControlInput& input) {
   const int n = m.modes();
   Eigen::VectorXd f = m.gravity_force + m.amb_bias_force;
   for (std::size_t a = 0; a < m.params.ambs.size(); ++a) {
     const AmbParams& amb = m.params.ambs[a];
-    if (amb.law != AmbForceLaw::kLinearisedCurrents) continue;
-    const Eigen::Vector2d fa(amb.current_gain_N_per_A * current_A[a][0],
-                             amb.current_gain_N_per_A * current_A[a][1]);
-    f += m.amb_shapes[a].transpose() * fa;
+    double ki = 0.0;
+    if (amb.law == AmbForceLaw::kLinearisedCurrents) ki = amb.current_gain_N_per_A;
+    if (amb.law == AmbForceLaw::kElectromagnet) ki = ElectromagnetCurrentGain(amb.electromagnet);
+    const auto& i = input.amb[a].current_A;
+    f += m.amb_shapes[a].transpose() *
+         Eigen::Vector2d(ki * LimitedCurrent(amb, i[0]), ki * LimitedCurrent(amb, i[1]));
   }
   const Eigen::MatrixXd k = m.stiffness_powered;
   const Eigen::FullPivLU<Eigen::MatrixXd> lu(k);

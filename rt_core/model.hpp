@@ -3,6 +3,7 @@
 #include <memory>
 #include <vector>
 
+#include "rt_core/control_input.hpp"
 #include "rt_core/eigen_types.hpp"
 #include "rt_core/model_params.hpp"
 #include "rt_core/plane_model.hpp"
@@ -29,7 +30,10 @@ struct Model {
   ModalMatrix stiffness_powered;
   ModalMatrix damping_powered;
   ModalVector amb_bias_force;  ///< gravity compensation of equivalent-law AMBs
-  std::vector<std::array<double, 2>> amb_bias_force_N;  ///< per AMB (x, y), for reports
+  /// Per AMB (x, y): the static force that holds the rotor with zero deflection at the AMB
+  /// planes (an integrating controller's settled output). Equivalent-law AMBs with gravity
+  /// compensation apply it as a bias; current-driven AMBs' controllers use it as feedforward.
+  std::vector<std::array<double, 2>> amb_bias_force_N;
 
   PlaneModel planes;  ///< the same equations by bending plane, for the step
 
@@ -46,8 +50,8 @@ struct Model {
 /// TDB objects, AMB projections and the gravity compensation.
 Model BuildModel(const ModelParams& params);
 
-/// Static equilibrium q of the powered rotor for the given AMB currents (zero if singular).
-ModalVector PoweredEquilibrium(const Model& model,
-                               const std::array<std::array<double, 2>, kMaxAmbs>& current_A);
+/// Static equilibrium q of the powered rotor for the given AMB control currents, the
+/// current-driven laws linearised at the centre (zero if singular).
+ModalVector PoweredEquilibrium(const Model& model, const ControlInput& input);
 
 }  // namespace ambdrop

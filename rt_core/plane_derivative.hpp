@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "rt_core/amb_force.hpp"
 #include "rt_core/control_input.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/touchdown_bearing.hpp"
@@ -31,21 +32,43 @@ void PlaneDerivative(const Model& m, const StateVector& y, const ControlInput& i
   const double spin = y(4 * H);
   const double angle = y(4 * H + 1);
 
-  // Generalized forces: gravity, then the powered AMBs.
+  // Generalized forces: gravity, linear supports, then the AMBs scaled by their drive.
   Vec fx = vec(p.gravity_x);
   Vec fy = vec(p.gravity_y);
   for (const PlaneSupport& b : p.bearings) support(b, qx, qy, vx, vy, &fx, &fy);
-  if (input.power_on) {
-    for (const PlaneSupport& b : p.powered_supports) support(b, qx, qy, vx, vy, &fx, &fy);
-    fx += vec(p.amb_bias_x);
-    fy += vec(p.amb_bias_y);
-    for (std::size_t a = 0; a < m.params.ambs.size(); ++a) {
-      const AmbParams& amb = m.params.ambs[a];
-      if (amb.law != AmbForceLaw::kLinearisedCurrents) continue;
-      // f = ki i; the ks u part is a powered support.
-      fx += (amb.current_gain_N_per_A * input.current_A[a][0]) * vec(p.ambs[a].sx);
-      fy += (amb.current_gain_N_per_A * input.current_A[a][1]) * vec(p.ambs[a].sy);
+  for (std::size_t a = 0; a < p.ambs.size(); ++a) {
+    const PlaneAmb& amb = p.ambs[a];
+    const AmbDrive& drive = input.amb[a];
+    if (drive.force_scale[0] == 0.0 && drive.force_scale[1] == 0.0) continue;
+    const auto sx = vec(amb.shape.sx);
+    const auto sy = vec(amb.shape.sy);
+    const double ux = sx.dot(qx);
+    const double uy = sy.dot(qy);
+    double f[2] = {0.0, 0.0};
+    switch (amb.params.law) {
+      case AmbForceLaw::kEquivalent: {
+        const double k = amb.params.stiffness_N_per_m;
+        const double c = amb.params.damping_N_s_per_m;
+        f[0] = amb.bias_x_N - k * ux - c * sx.dot(vx);
+        f[1] = amb.bias_y_N - k * uy - c * sy.dot(vy);
+        break;
+      }
+      case AmbForceLaw::kLinearisedCurrents: {
+        const double ki = amb.params.current_gain_N_per_A;
+        const double ks = amb.params.position_gain_N_per_m;
+        f[0] = ki * LimitedCurrent(amb.params, drive.current_A[0]) + ks * ux;
+        f[1] = ki * LimitedCurrent(amb.params, drive.current_A[1]) + ks * uy;
+        break;
+      }
+      case AmbForceLaw::kElectromagnet:
+        f[0] = ElectromagnetForce(amb.params.electromagnet,
+                                  LimitedCurrent(amb.params, drive.current_A[0]), ux);
+        f[1] = ElectromagnetForce(amb.params.electromagnet,
+                                  LimitedCurrent(amb.params, drive.current_A[1]), uy);
+        break;
     }
+    fx += (drive.force_scale[0] * f[0]) * sx;
+    fy += (drive.force_scale[1] * f[1]) * sy;
   }
 
   // Touchdown bearings: journal motion at each TDB plane → contact forces and race rates.
@@ -63,7 +86,7 @@ void PlaneDerivative(const Model& m, const StateVector& y, const ControlInput& i
   }
 
   // Spin: the motor holds the speed while powered; afterwards only friction acts (Ip W' = T).
-  const double spin_rate = input.power_on ? 0.0 : torque / m.rotor.polar_inertia_kg_m2;
+  const double spin_rate = input.motor_on ? 0.0 : torque / m.rotor.polar_inertia_kg_m2;
 
   // Unbalance, constant- and variable-speed terms (Jarroux 2019 Eq. (13), F_mu).
   for (std::size_t u = 0; u < m.params.unbalances.size(); ++u) {

@@ -1,6 +1,7 @@
 #pragma once
 #include <vector>
 
+#include "rt_core/amb_params.hpp"
 #include "rt_core/eigen_types.hpp"
 
 namespace ambdrop {
@@ -25,6 +26,17 @@ struct PlaneSupport {
   double damping_y_N_s_per_m = 0.0;
 };
 
+/// One AMB as the step applies it (per axis, times the input's force scale):
+///   equivalent:   f = bias - k u - c u'
+///   linearised:   f = ki i + ks u
+///   electromagnet: f = k ((I0 + i)^2/(g0 - u)^2 - (I0 - i)^2/(g0 + u)^2)
+struct PlaneAmb {
+  PlaneStation shape;
+  AmbParams params;
+  double bias_x_N = 0.0;  ///< equivalent law with gravity compensation
+  double bias_y_N = 0.0;
+};
+
 /// The reduced equations split by bending plane, which is what the step integrates. Shaft,
 /// discs, bearings and AMBs never couple the planes: the modal stiffness and damping are
 /// diagonal, the gyroscopic matrix block off-diagonal, and each station's x sees only q_x, its y
@@ -33,13 +45,12 @@ struct PlaneSupport {
 struct PlaneModel {
   int h = 0;  ///< modes per plane
   PlaneVector modal_stiffness_x, modal_stiffness_y, modal_damping_x, modal_damping_y;
-  std::vector<PlaneSupport> bearings;          ///< always acting
-  std::vector<PlaneSupport> powered_supports;  ///< AMB stiffness/damping while powered
+  std::vector<PlaneSupport> bearings;  ///< linear supports, always acting
+  std::vector<PlaneAmb> ambs;
   PlaneMatrix gyroscopic_xy;                   ///< G block: rows q_x, columns q_y
   PlaneMatrix gyroscopic_yx;
   PlaneVector gravity_x, gravity_y;
-  PlaneVector amb_bias_x, amb_bias_y;
-  std::vector<PlaneStation> ambs, tdbs, sensors, unbalances;
+  std::vector<PlaneStation> tdbs, sensors, unbalances;
 };
 
 }  // namespace ambdrop

@@ -39,13 +39,13 @@ State Simulator::InitialState(const ControlInput& input) const {
   // equilibrium; one that starts dropped starts centred.
   const bool powered = model_.trigger_step != 0;
   if (model_.params.simulation.initial_position == InitialPosition::kEquilibrium && powered) {
-    s.y.head(n) = PoweredEquilibrium(model_, input.current_A);
+    s.y.head(n) = PoweredEquilibrium(model_, input);
   }
   s.y(model_.spin_index()) = model_.params.simulation.spin_speed_rad_s;
   for (std::size_t i = 0; i < model_.tdbs.size(); ++i) {
     model_.tdbs[i]->InitialState(s.y.data() + model_.tdb_state_offset[i]);
   }
-  s.power_on = model_.trigger_step != 0;
+  s.power_on = powered;
   return s;
 }
 
@@ -71,7 +71,7 @@ StepStatus Simulator::Step(State* state, const ControlInput& input) noexcept {
   stage_ += k4_;
   y += (h / 6.0) * stage_;
   ++state->step_index;
-  state->power_on = input.power_on;
+  state->power_on = input.motor_on;
 
   if (!y.allFinite()) {
     ++state->faults.non_finite_state;
@@ -105,10 +105,10 @@ void Simulator::Observe(const State& state, Observation* out) const noexcept {
     const Eigen::Vector2d xy = m.tdb_shapes[i] * q;
     out->tdb_journal_xy_m[i] = {xy(0), xy(1)};
   }
-  // The TDB forces of the current state (a derivative evaluation on scratch storage).
+  // The TDB forces of the current state (a derivative evaluation on scratch storage; the
+  // AMB drive does not change them).
   StateVector rate = StateVector::Zero(m.state_size);
-  ControlInput input;
-  input.power_on = state.power_on;
+  ControlInput input = state.power_on ? ControlInput::Powered() : ControlInput::PowerOff();
   Derivative(state.y, input, &rate, &out->tdb);
 }
 

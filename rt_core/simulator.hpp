@@ -18,7 +18,7 @@ struct Observation {
   double time_s = 0.0;
   double spin_speed_rad_s = 0.0;
   double spin_angle_rad = 0.0;
-  bool power_on = true;
+  bool power_on = true;  ///< no full power failure (motor on)
   std::array<std::array<double, 2>, kMaxSensors> sensor_xy_m{};  ///< per sensor (x, y)
   std::array<std::array<double, 2>, kMaxTdbs> tdb_journal_xy_m{};
   std::array<TdbForce, kMaxTdbs> tdb{};

@@ -16,7 +16,7 @@ struct FaultCounters {
 struct State {
   StateVector y;
   std::int64_t step_index = 0;
-  bool power_on = true;  ///< AMB forces applied during the last step
+  bool power_on = true;  ///< the motor drove the rotor (no full power failure) in the last step
   FaultCounters faults;
 };
 

@@ -35,8 +35,7 @@ TEST(RigidDrop, FirstContactAtFreeFallTime) {
   const Model model = BuildModel(DropRig());
   Simulator sim(model);
   State s = sim.InitialState();
-  ControlInput off;
-  off.power_on = false;
+  const ControlInput off = ControlInput::PowerOff();
   const double dt = model.params.simulation.step_s;
   const double expected = std::sqrt(2.0 * 0.2e-3 / 9.81);
   Observation obs;
@@ -60,8 +59,7 @@ TEST(RigidDrop, SettlesAtTheContactLawStaticPenetration) {
     const Model model = BuildModel(p);
     Simulator sim(model);
     State s = sim.InitialState();
-    ControlInput off;
-    off.power_on = false;
+    const ControlInput off = ControlInput::PowerOff();
     for (int i = 0; i < 300000; ++i) ASSERT_EQ(sim.Step(&s, off), StepStatus::kOk);
     Observation obs;
     sim.Observe(s, &obs);

@@ -20,9 +20,7 @@ Model Rig() {
 }
 
 ControlInput InputAt(const Model& m, std::int64_t step) {
-  ControlInput in;
-  in.power_on = step < m.trigger_step;
-  return in;
+  return step < m.trigger_step ? ControlInput::Powered() : ControlInput::PowerOff();
 }
 
 TEST(Step, NoHeapAllocationOverTwentyThousandSteps) {
@@ -81,8 +79,7 @@ TEST(Step, DivergenceIsReportedNotHidden) {
   Simulator sim(model);
   State s = sim.InitialState();
   StepStatus status = StepStatus::kOk;
-  ControlInput off;
-  off.power_on = false;
+  const ControlInput off = ControlInput::PowerOff();
   for (int i = 0; i < 5000 && status == StepStatus::kOk; ++i) status = sim.Step(&s, off);
   EXPECT_NE(status, StepStatus::kOk);  // a 2 ms step cannot hold a 2e8 N/m contact
   EXPECT_EQ(s.faults.non_finite_state + s.faults.excursion_beyond_bound, 1);

@@ -13,8 +13,7 @@ void RunSteps(benchmark::State& bench, bool dropped) {
   const Model model = BuildModel(testing::LoadTestConfig("jarroux2019_industrial.toml"));
   Simulator sim(model);
   State s = sim.InitialState();
-  ControlInput input;
-  input.power_on = !dropped;
+  const ControlInput input = dropped ? ControlInput::PowerOff() : ControlInput::Powered();
   if (dropped) {
     // Start from a rotor already on its TDBs, spinning up the races.
     for (int i = 0; i < 20000; ++i) (void)sim.Step(&s, input);

@@ -1,0 +1,72 @@
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "rt_core/amb_params.hpp"
+
+namespace ambdrop {
+
+inline constexpr double kVacuumPermeability_H_per_m = 1.25663706212e-6;
+
+/// k of the electromagnet law, mu0 N^2 A cos(alpha) / 4 (N m^2 / A^2).
+inline double ElectromagnetConstant(const ElectromagnetParams& e) noexcept {
+  return kVacuumPermeability_H_per_m * e.turns * e.turns * e.pole_area_m2 *
+         std::cos(e.pole_half_angle_rad) / 4.0;
+}
+
+/// Current and position gains of the electromagnet law linearised at the centre:
+/// ki = 4 k I0 / g0^2 (N/A), ks = 4 k I0^2 / g0^3 (N/m).
+inline double ElectromagnetCurrentGain(const ElectromagnetParams& e) noexcept {
+  return 4.0 * ElectromagnetConstant(e) * e.bias_current_A / (e.nominal_gap_m * e.nominal_gap_m);
+}
+inline double ElectromagnetPositionGain(const ElectromagnetParams& e) noexcept {
+  return 4.0 * ElectromagnetConstant(e) * e.bias_current_A * e.bias_current_A /
+         (e.nominal_gap_m * e.nominal_gap_m * e.nominal_gap_m);
+}
+
+/// The control current the amplifier can deliver: |i| <= limit, and for the electromagnet law
+/// both coil currents I0 +- i inside [0, limit].
+inline double LimitedCurrent(const AmbParams& a, double current_A) noexcept {
+  double limit = a.current_limit_A;
+  if (a.law == AmbForceLaw::kElectromagnet) {
+    const double i0 = a.electromagnet.bias_current_A;
+    limit = std::min(i0, a.current_limit_A - i0);
+  }
+  return std::clamp(current_A, -limit, limit);
+}
+
+/// Force of one electromagnet axis (N, along +u) for control current i and rotor displacement u
+/// (seed 003's law). The displacement is held short of the pole faces: the TDBs stop the rotor
+/// long before, and the law is singular there.
+inline double ElectromagnetForce(const ElectromagnetParams& e, double current_A,
+                                 double displacement_m) noexcept {
+  const double k = ElectromagnetConstant(e);
+  const double g0 = e.nominal_gap_m;
+  const double u = std::clamp(displacement_m, -0.95 * g0, 0.95 * g0);
+  const double plus = e.bias_current_A + current_A;
+  const double minus = e.bias_current_A - current_A;
+  return k * (plus * plus / ((g0 - u) * (g0 - u)) - minus * minus / ((g0 + u) * (g0 + u)));
+}
+
+/// Control current that makes the static force f at the centre (feedforward for gravity).
+inline double CurrentForStaticForce(const AmbParams& a, double force_N) noexcept {
+  switch (a.law) {
+    case AmbForceLaw::kLinearisedCurrents:
+      return force_N / a.current_gain_N_per_A;
+    case AmbForceLaw::kElectromagnet:
+      return force_N / ElectromagnetCurrentGain(a.electromagnet);
+    case AmbForceLaw::kEquivalent:
+      break;
+  }
+  return 0.0;
+}
+
+/// Scale on an AMB's force `seconds` after it lost power: 0 without flux decay, else
+/// exp(-2 t / tau) (currents decay as exp(-t/tau); the force is quadratic in them).
+inline double FluxDecayForceScale(const AmbParams& a, double seconds) noexcept {
+  if (!a.flux_decay.enabled || !(a.flux_decay.time_constant_s > 0.0)) return 0.0;
+  return std::exp(-2.0 * seconds / a.flux_decay.time_constant_s);
+}
+
+}  // namespace ambdrop
