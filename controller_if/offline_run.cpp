@@ -1,34 +1,47 @@
 #include "controller_if/offline_run.hpp"
 
 #include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "controller_if/current_profile.hpp"
-#include "rt_core/amb_force.hpp"
+#include "controller_if/pid_controller.hpp"
+#include "controller_if/sensor_emulator.hpp"
 #include "controller_if/state_dump.hpp"
+#include "rt_core/amb_force.hpp"
 
 namespace ambdrop {
 namespace {
 
-// Scheduled full power failure: before the trigger every AMB follows its current profile;
-// after it the motor is off and each AMB's force fades with its flux decay (or vanishes),
-// its currents frozen at their values at the trigger.
-ControlInput InputAt(const Model& model, std::int64_t step) {
-  const bool powered = model.trigger_step < 0 || step < model.trigger_step;
-  ControlInput in = powered ? ControlInput::Powered() : ControlInput::PowerOff();
+// Physics steps per controller sample; the controller period must be a whole number of steps.
+std::int64_t ControllerSubsteps(const Model& model) {
+  if (model.params.controller.kind == ControllerKind::kNone) return 1;
   const double dt = model.params.simulation.step_s;
-  const double t = step * dt;
-  for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
-    const AmbParams& amb = model.params.ambs[a];
-    if (powered) {
-      in.amb[a].current_A = CurrentAt(amb.current_profile, t);
-    } else {
-      const double trigger_s = model.trigger_step * dt;
-      in.amb[a].current_A = CurrentAt(amb.current_profile, trigger_s);
-      const double scale = FluxDecayForceScale(amb, t - trigger_s);
-      in.amb[a].force_scale = {scale, scale};
-    }
+  const double ratio = 1.0 / (model.params.controller.rate_Hz * dt);
+  const std::int64_t n = std::llround(ratio);
+  if (n < 1 || std::abs(ratio - static_cast<double>(n)) > 1e-6 * ratio) {
+    throw std::invalid_argument("controller.rate_Hz = " +
+                                std::to_string(model.params.controller.rate_Hz) +
+                                ": the controller period must be a whole number of physics steps (" +
+                                std::to_string(dt) + " s)");
   }
-  return in;
+  return n;
+}
+
+// Scheduled full power failure: after the trigger the motor is off and each AMB's force fades
+// with its flux decay (or vanishes), its currents frozen at their last values.
+void ApplyPowerState(const Model& model, std::int64_t step, ControlInput* in) {
+  const bool powered = model.trigger_step < 0 || step < model.trigger_step;
+  in->motor_on = powered;
+  for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+    double scale = 1.0;
+    if (!powered) {
+      scale = FluxDecayForceScale(model.params.ambs[a],
+                                  (step - model.trigger_step) * model.params.simulation.step_s);
+    }
+    in->amb[a].force_scale = {scale, scale};
+  }
 }
 
 }  // namespace
@@ -36,20 +49,52 @@ ControlInput InputAt(const Model& model, std::int64_t step) {
 OfflineRunResult RunOffline(const Model& model,
                             const std::function<void(const Observation&)>& on_output,
                             const std::function<void(double)>& on_progress) {
-  Simulator sim(model);
-  OfflineRunResult result;
-  State state = sim.InitialState(InputAt(model, 0));
   const double dt = model.params.simulation.step_s;
+  const std::int64_t substeps = ControllerSubsteps(model);
+  const bool internal = model.params.controller.kind == ControllerKind::kInternalPid;
+  Simulator sim(model);
+  SensorEmulator sensors(model.params.sensors, static_cast<double>(substeps) * dt);
+  std::optional<ReferenceController> controller;
+  ControlInput input;
+  if (internal) {
+    controller.emplace(model, static_cast<double>(substeps) * dt);
+    controller->Initial(&input);
+  } else {
+    for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+      input.amb[a].current_A = CurrentAt(model.params.ambs[a].current_profile, 0.0);
+    }
+  }
+  ApplyPowerState(model, 0, &input);
+
+  OfflineRunResult result;
+  State state = sim.InitialState(input);
   const std::int64_t output_every =
       std::max<std::int64_t>(1, std::llround(model.params.simulation.output_interval_s / dt));
   const std::int64_t progress_every = std::max<std::int64_t>(1, model.total_steps / 200);
   Observation obs;
+  SensorReadings readings;
   if (on_output) {
     sim.Observe(state, &obs);
     on_output(obs);
   }
   while (state.step_index < model.total_steps) {
-    const ControlInput input = InputAt(model, state.step_index);
+    const std::int64_t k = state.step_index;
+    ApplyPowerState(model, k, &input);
+    // While powered the currents follow the controller (at its rate) or the profiles; after
+    // the failure the amplifiers are off and the currents stay as they were.
+    if (input.motor_on) {
+      if (internal) {
+        if (k % substeps == 0) {
+          sim.Observe(state, &obs);
+          sensors.Sample(obs, &readings);
+          controller->Update(readings, &input);
+        }
+      } else {
+        for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+          input.amb[a].current_A = CurrentAt(model.params.ambs[a].current_profile, k * dt);
+        }
+      }
+    }
     const StepStatus status = sim.Step(&state, input);
     if (status != StepStatus::kOk) {
       result.status = status;

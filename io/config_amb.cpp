@@ -12,6 +12,7 @@ namespace {
 
 constexpr std::string_view kEquivalent = "equivalent";
 constexpr std::string_view kLinearised = "linearised_currents";
+constexpr std::string_view kElectromagnet = "electromagnet";
 
 const std::vector<std::string_view> kEquivalentKeys = {"stiffness_N_per_m", "damping_N_s_per_m",
                                                        "gravity_compensation"};
@@ -75,28 +76,80 @@ std::vector<CurrentSample> ReadCurrentProfile(const TableReader& table) {
   return profile;
 }
 
+// Keys every law accepts.
+const std::vector<std::string_view> kCommonKeys = {"position_m", "law", "current_limit_A",
+                                                   "flux_decay", "sensor"};
+
+std::vector<std::string_view> WithCommon(std::vector<std::string_view> keys) {
+  keys.insert(keys.end(), kCommonKeys.begin(), kCommonKeys.end());
+  return keys;
+}
+
+void ReadCommon(const TableReader& table, const AxialRange& position, AmbParams* amb) {
+  amb->position_m = ReadAxialPosition(table, position);
+  amb->current_limit_A = table.Number("current_limit_A", Positive(), amb->current_limit_A);
+  amb->sensor = table.String("sensor", amb->name);
+  if (const auto decay = table.OptionalTable("flux_decay")) {
+    decay->AllowOnly({"enabled", "time_constant_s"});
+    amb->flux_decay.enabled = decay->Bool("enabled", false);
+    amb->flux_decay.time_constant_s = decay->Number("time_constant_s", Positive());
+  }
+}
+
+ElectromagnetParams ReadElectromagnet(const TableReader& amb) {
+  const TableReader table = amb.Table("electromagnet");
+  table.AllowOnly({"pole_area_m2", "turns", "nominal_gap_m", "bias_current_A",
+                   "pole_half_angle_rad"});
+  ElectromagnetParams e;
+  e.pole_area_m2 = table.Number("pole_area_m2", Positive());
+  e.turns = table.Number("turns", Positive());
+  e.nominal_gap_m = table.Number("nominal_gap_m", Positive());
+  e.bias_current_A = table.Number("bias_current_A", Positive());
+  e.pole_half_angle_rad =
+      table.Number("pole_half_angle_rad", InHalfOpenRange(0.0, 1.5707963267948966),
+                   e.pole_half_angle_rad);
+  return e;
+}
+
 AmbParams ReadAmb(const std::string& name, const TableReader& table, const AxialRange& position) {
   AmbParams amb;
   amb.name = name;
-  const std::string law = table.Choice("law", {kEquivalent, kLinearised}, kEquivalent);
+  const std::string law =
+      table.Choice("law", {kEquivalent, kLinearised, kElectromagnet}, kEquivalent);
   if (law == kEquivalent) {
     RejectKeysOfOtherLaw(table, kEquivalent, kLinearisedKeys, kLinearised);
-    table.AllowOnly(
-        {"position_m", "law", "stiffness_N_per_m", "damping_N_s_per_m", "gravity_compensation"});
+    table.Reject("electromagnet",
+                 "no electromagnet table with law = \"equivalent\" (it belongs to law = "
+                 "\"electromagnet\")");
+    table.AllowOnly(WithCommon({"stiffness_N_per_m", "damping_N_s_per_m", "gravity_compensation"}));
     amb.law = AmbForceLaw::kEquivalent;
-    amb.position_m = ReadAxialPosition(table, position);
+    ReadCommon(table, position, &amb);
     amb.stiffness_N_per_m = table.Number("stiffness_N_per_m", NonNegative());
     amb.damping_N_s_per_m = table.Number("damping_N_s_per_m", NonNegative());
     amb.gravity_compensation = table.Bool("gravity_compensation", amb.gravity_compensation);
     return amb;
   }
-  RejectKeysOfOtherLaw(table, kLinearised, kEquivalentKeys, kEquivalent);
-  table.AllowOnly(
-      {"position_m", "law", "current_gain_N_per_A", "position_gain_N_per_m", "current_profile"});
-  amb.law = AmbForceLaw::kLinearisedCurrents;
-  amb.position_m = ReadAxialPosition(table, position);
-  amb.current_gain_N_per_A = table.Number("current_gain_N_per_A", AnyNumber());
-  amb.position_gain_N_per_m = table.Number("position_gain_N_per_m", NonNegative());
+  RejectKeysOfOtherLaw(table, law, kEquivalentKeys, kEquivalent);
+  if (law == kLinearised) {
+    table.Reject("electromagnet",
+                 "no electromagnet table with law = \"linearised_currents\" (it belongs to law = "
+                 "\"electromagnet\")");
+    table.AllowOnly(WithCommon({"current_gain_N_per_A", "position_gain_N_per_m", "current_profile"}));
+    amb.law = AmbForceLaw::kLinearisedCurrents;
+    ReadCommon(table, position, &amb);
+    amb.current_gain_N_per_A = table.Number("current_gain_N_per_A", AnyNumber());
+    amb.position_gain_N_per_m = table.Number("position_gain_N_per_m", NonNegative());
+    amb.current_profile = ReadCurrentProfile(table);
+    return amb;
+  }
+  table.Reject("current_gain_N_per_A",
+               "no current_gain_N_per_A with law = \"electromagnet\" (the geometry sets it)");
+  table.Reject("position_gain_N_per_m",
+               "no position_gain_N_per_m with law = \"electromagnet\" (the geometry sets it)");
+  table.AllowOnly(WithCommon({"electromagnet", "current_profile"}));
+  amb.law = AmbForceLaw::kElectromagnet;
+  ReadCommon(table, position, &amb);
+  amb.electromagnet = ReadElectromagnet(table);
   amb.current_profile = ReadCurrentProfile(table);
   return amb;
 }

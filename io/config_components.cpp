@@ -58,14 +58,59 @@ std::vector<LinearBearingParams> ReadBearings(const TableReader& root, const Axi
   return bearings;
 }
 
+namespace {
+
+// A sensor plane and its error models, each a switch (noise, runout, lag).
+SensorParams ReadSensor(const std::string& name, const TableReader& table,
+                        const AxialRange& position) {
+  table.AllowOnly({"position_m", "gain", "offset_m", "quantisation_m", "noise", "runout", "lag",
+                   "output", "counts_per_m", "counts_offset"});
+  SensorParams s;
+  s.name = name;
+  s.position_m = ReadAxialPosition(table, position);
+  s.gain = table.Number("gain", AnyNumber(), s.gain);
+  s.offset_m = table.Number("offset_m", AnyNumber(), s.offset_m);
+  s.quantisation_m = table.Number("quantisation_m", NonNegative(), s.quantisation_m);
+  if (const auto noise = table.OptionalTable("noise")) {
+    noise->AllowOnly({"enabled", "std_dev_m", "seed"});
+    s.noise.enabled = noise->Bool("enabled", false);
+    s.noise.std_dev_m = noise->Number("std_dev_m", NonNegative());
+    s.noise.seed = static_cast<std::uint64_t>(noise->Integer("seed", 0, 2147483647, 1));
+  }
+  if (const auto runout = table.OptionalTable("runout")) {
+    runout->AllowOnly({"enabled", "amplitude_1x_m", "phase_1x_rad", "amplitude_2x_m",
+                       "phase_2x_rad"});
+    s.runout.enabled = runout->Bool("enabled", false);
+    s.runout.amplitude_1x_m = runout->Number("amplitude_1x_m", NonNegative(), 0.0);
+    s.runout.phase_1x_rad = runout->Number("phase_1x_rad", AnyNumber(), 0.0);
+    s.runout.amplitude_2x_m = runout->Number("amplitude_2x_m", NonNegative(), 0.0);
+    s.runout.phase_2x_rad = runout->Number("phase_2x_rad", AnyNumber(), 0.0);
+  }
+  if (const auto lag = table.OptionalTable("lag")) {
+    lag->AllowOnly({"enabled", "delay_s", "cutoff_Hz"});
+    s.lag.enabled = lag->Bool("enabled", false);
+    s.lag.delay_s = lag->Number("delay_s", NonNegative(), 0.0);
+    s.lag.cutoff_Hz = lag->Number("cutoff_Hz", NonNegative(), 0.0);
+  }
+  const std::string output = table.Choice("output", {"metres", "counts"}, "metres");
+  if (output == "counts") {
+    s.output = SensorOutput::kCounts;
+    s.counts_per_m = table.Number("counts_per_m", Positive());
+    s.counts_offset = table.Number("counts_offset", AnyNumber(), 0.0);
+  } else {
+    table.Reject("counts_per_m", "no counts_per_m with output = \"metres\"");
+    table.Reject("counts_offset", "no counts_offset with output = \"metres\"");
+  }
+  return s;
+}
+
+}  // namespace
+
 std::vector<SensorParams> ReadSensors(const TableReader& root, const AxialRange& position) {
   const auto tables = root.NamedTables("sensor");
   root.CheckCount("sensor", tables.size(), kMaxSensors, "sensors");
   std::vector<SensorParams> sensors;
-  for (const auto& [name, table] : tables) {
-    table.AllowOnly({"position_m"});
-    sensors.push_back(SensorParams{.name = name, .position_m = ReadAxialPosition(table, position)});
-  }
+  for (const auto& [name, table] : tables) sensors.push_back(ReadSensor(name, table, position));
   return sensors;
 }
 

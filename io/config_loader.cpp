@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/config_base.hpp"
 #include "io/config_overrides.hpp"
 #include "io/config_readers.hpp"
 #include "io/toml_reader.hpp"
@@ -26,7 +27,7 @@ toml::table Parse(const std::string& text, const std::string& source_name) {
 
 ModelParams ReadModel(const TableReader& root) {
   root.AllowOnly({"name", "simulation", "gravity", "trigger", "rotor", "bearing", "amb", "sensor",
-                  "tdb", "unbalance"});
+                  "tdb", "unbalance", "controller"});
   ModelParams params;
   params.name = root.String("name", "");
   params.simulation = config_detail::ReadSimulation(root);
@@ -39,6 +40,7 @@ ModelParams ReadModel(const TableReader& root) {
   params.sensors = config_detail::ReadSensors(root, position);
   params.tdbs = config_detail::ReadTdbs(root, position);
   params.unbalances = config_detail::ReadUnbalances(root, position);
+  params.controller = config_detail::ReadController(root);
   return params;
 }
 
@@ -56,7 +58,8 @@ LoadedConfig LoadConfig(const std::filesystem::path& path,
 
 LoadedConfig LoadConfigFromString(const std::string& text, const std::string& source_name,
                                   const std::vector<std::string>& overrides) {
-  toml::table root = Parse(text, source_name);
+  const std::filesystem::path directory = std::filesystem::path(source_name).parent_path();
+  toml::table root = config_detail::ResolveBase(Parse(text, source_name), directory, source_name);
   for (const std::string& override_text : overrides) {
     config_detail::ApplyOverride(root, override_text);
   }

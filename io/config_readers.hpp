@@ -14,6 +14,7 @@ GravityParams ReadGravity(const TableReader& root);
 TriggerParams ReadTrigger(const TableReader& root);
 
 RotorParams ReadRotor(const TableReader& root);
+ControllerParams ReadController(const TableReader& root);
 
 /// Where components may sit: on the shaft for a flexible rotor, anywhere finite for a rigid one.
 struct AxialRange {

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -8,9 +9,70 @@
 
 namespace ambdrop {
 
+/// Zero-mean noise added to each sample, approximately Gaussian (Irwin-Hall sum of 12 uniforms,
+/// bounded at +-6 sigma) from a seeded xoshiro256** stream, so runs repeat on any platform.
+struct SensorNoiseParams {
+  bool enabled = false;
+  double std_dev_m = 0.0;
+  std::uint64_t seed = 1;
+};
+
+/// Synchronous runout: a pattern on the rotor surface that turns with it (1X and 2X).
+struct SensorRunoutParams {
+  bool enabled = false;
+  double amplitude_1x_m = 0.0;
+  double phase_1x_rad = 0.0;
+  double amplitude_2x_m = 0.0;
+  double phase_2x_rad = 0.0;
+};
+
+/// Transport delay and first-order low-pass of the sensor electronics.
+struct SensorLagParams {
+  bool enabled = false;
+  double delay_s = 0.0;    ///< rounded to whole controller samples
+  double cutoff_Hz = 0.0;  ///< 0: no filter
+};
+
+enum class SensorOutput { kMetres, kCounts };
+
+/// A displacement-sensor plane: what the controller reads is
+///   gain * (displacement + runout) + offset, delayed, filtered, plus noise, quantised,
+/// in metres or in ADC counts (counts = round(reading * counts_per_m + counts_offset)).
 struct SensorParams {
   std::string name;
   double position_m = 0.0;
+  double gain = 1.0;  ///< m/m, a scale error
+  double offset_m = 0.0;
+  double quantisation_m = 0.0;  ///< 0: none
+  SensorNoiseParams noise;
+  SensorRunoutParams runout;
+  SensorLagParams lag;
+  SensorOutput output = SensorOutput::kMetres;
+  double counts_per_m = 0.0;
+  double counts_offset = 0.0;
+};
+
+/// Seed 003's PID, per radial axis: i = Ga (kp e + ki/s e + kd s/(1 + tau_d s) e) with
+/// e = -Gs * reading, plus the feedforward current that holds the static load.
+struct PidParams {
+  double sensor_gain_V_per_m = 20000.0;  ///< Gs
+  double amplifier_gain_A_per_V = 0.4;   ///< Ga
+  double kp = 0.0;
+  double ki_per_s = 0.0;
+  double kd_s = 0.0;
+  double derivative_filter_s = 0.0;  ///< tau_d
+  bool gravity_feedforward = true;
+};
+
+enum class ControllerKind {
+  kNone,         ///< currents from the AMBs' current profiles
+  kInternalPid,  ///< the in-process reference controller
+};
+
+struct ControllerParams {
+  ControllerKind kind = ControllerKind::kNone;
+  double rate_Hz = 20000.0;  ///< controller sample rate; an integer number of physics steps
+  PidParams pid;
 };
 
 struct GravityParams {
@@ -52,6 +114,7 @@ struct ModelParams {
   GravityParams gravity;
   TriggerParams trigger;
   SimulationParams simulation;
+  ControllerParams controller;
 };
 
 }  // namespace ambdrop

@@ -1,0 +1,75 @@
+#include "controller_if/pid_controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "rt_core/amb_force.hpp"
+
+namespace ambdrop {
+
+PidAxis::PidAxis(const PidParams& params, double period_s, double feedforward_A, double limit_A)
+    : p_(params), dt_(period_s), feedforward_A_(feedforward_A), limit_A_(limit_A) {}
+
+double PidAxis::Update(double reading_m) noexcept {
+  const double e = -p_.sensor_gain_V_per_m * reading_m;
+  if (!primed_) {
+    previous_error_ = e;
+    primed_ = true;
+  }
+  derivative_ += (p_.kd_s * (e - previous_error_) / dt_ - derivative_) * dt_ /
+                 (p_.derivative_filter_s + dt_);
+  previous_error_ = e;
+  const double candidate = integral_ + p_.ki_per_s * e * dt_;
+  const double unlimited =
+      p_.amplifier_gain_A_per_V * (p_.kp * e + candidate + derivative_) + feedforward_A_;
+  // Anti-windup: keep the integral only while the amplifier is not saturated.
+  if (std::abs(unlimited) <= limit_A_) integral_ = candidate;
+  const double current =
+      p_.amplifier_gain_A_per_V * (p_.kp * e + integral_ + derivative_) + feedforward_A_;
+  return std::clamp(current, -limit_A_, limit_A_);
+}
+
+ReferenceController::ReferenceController(const Model& model, double period_s)
+    : ambs_(static_cast<int>(model.params.ambs.size())) {
+  const PidParams& pid = model.params.controller.pid;
+  for (int a = 0; a < ambs_; ++a) {
+    const AmbParams& amb = model.params.ambs[a];
+    if (amb.law == AmbForceLaw::kEquivalent) {
+      throw std::invalid_argument("amb '" + amb.name +
+                                  "': the reference controller drives currents; the equivalent "
+                                  "law has none (use linearised_currents or electromagnet)");
+    }
+    const std::string sensor = amb.sensor.empty() ? amb.name : amb.sensor;
+    sensor_index_[a] = -1;
+    for (std::size_t s = 0; s < model.params.sensors.size(); ++s) {
+      if (model.params.sensors[s].name == sensor) sensor_index_[a] = static_cast<int>(s);
+    }
+    if (sensor_index_[a] < 0) {
+      throw std::invalid_argument("amb '" + amb.name + "': no sensor named '" + sensor + "'");
+    }
+    const double limit = LimitedCurrent(amb, std::numeric_limits<double>::infinity());
+    for (int axis = 0; axis < 2; ++axis) {
+      feedforward_A_[a][axis] =
+          pid.gravity_feedforward ? CurrentForStaticForce(amb, model.amb_bias_force_N[a][axis])
+                                  : 0.0;
+      axes_[a][axis] = PidAxis(pid, period_s, feedforward_A_[a][axis], limit);
+    }
+  }
+}
+
+void ReferenceController::Update(const SensorReadings& readings, ControlInput* input) noexcept {
+  for (int a = 0; a < ambs_; ++a) {
+    for (int axis = 0; axis < 2; ++axis) {
+      input->amb[a].current_A[axis] =
+          axes_[a][axis].Update(readings.reading_m[sensor_index_[a]][axis]);
+    }
+  }
+}
+
+void ReferenceController::Initial(ControlInput* input) const noexcept {
+  for (int a = 0; a < ambs_; ++a) input->amb[a].current_A = feedforward_A_[a];
+}
+
+}  // namespace ambdrop

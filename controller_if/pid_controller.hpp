@@ -1,0 +1,50 @@
+#pragma once
+#include <array>
+
+#include "controller_if/sensor_emulator.hpp"
+#include "rt_core/control_input.hpp"
+#include "rt_core/model.hpp"
+
+namespace ambdrop {
+
+/// One axis of seed 003's PID, discretised at the controller period dt:
+///   e = -Gs * reading (V);  u = kp e + ki * sum(e dt) + D,
+///   D = kd s / (1 + tau_d s) e  by backward Euler:  D += (kd (e - e_prev) / dt - D) dt / (tau_d + dt),
+///   i = Ga u + i_ff (A).
+/// The integrator stops growing while the output is limited (anti-windup).
+class PidAxis {
+ public:
+  PidAxis() = default;
+  PidAxis(const PidParams& params, double period_s, double feedforward_A, double limit_A);
+  double Update(double reading_m) noexcept;
+  double integral_V() const noexcept { return integral_; }
+
+ private:
+  PidParams p_{};
+  double dt_ = 0.0;
+  double feedforward_A_ = 0.0;
+  double limit_A_ = 0.0;
+  double integral_ = 0.0;
+  double derivative_ = 0.0;
+  double previous_error_ = 0.0;
+  bool primed_ = false;
+};
+
+/// The in-process reference controller: a PidAxis per AMB axis fed by the AMB's sensor plane
+/// (AmbParams::sensor), with the gravity feedforward the model computed.
+class ReferenceController {
+ public:
+  ReferenceController(const Model& model, double period_s);
+  /// New control currents from one sample of the sensors.
+  void Update(const SensorReadings& readings, ControlInput* input) noexcept;
+  /// The currents of the first sample: the feedforward alone.
+  void Initial(ControlInput* input) const noexcept;
+
+ private:
+  std::array<std::array<PidAxis, 2>, kMaxAmbs> axes_{};
+  std::array<std::array<double, 2>, kMaxAmbs> feedforward_A_{};
+  std::array<int, kMaxAmbs> sensor_index_{};
+  int ambs_ = 0;
+};
+
+}  // namespace ambdrop
