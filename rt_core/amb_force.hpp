@@ -27,26 +27,32 @@ inline double ElectromagnetPositionGain(const ElectromagnetParams& e) noexcept {
 
 /// The control current the amplifier can deliver: |i| <= limit, and for the electromagnet law
 /// both coil currents I0 +- i inside [0, limit].
+inline double ControlCurrentLimit(const AmbParams& a) noexcept {
+  if (a.law != AmbForceLaw::kElectromagnet) return a.current_limit_A;
+  const double i0 = a.electromagnet.bias_current_A;
+  return std::min(i0, a.current_limit_A - i0);
+}
 inline double LimitedCurrent(const AmbParams& a, double current_A) noexcept {
-  double limit = a.current_limit_A;
-  if (a.law == AmbForceLaw::kElectromagnet) {
-    const double i0 = a.electromagnet.bias_current_A;
-    limit = std::min(i0, a.current_limit_A - i0);
-  }
+  const double limit = ControlCurrentLimit(a);
   return std::clamp(current_A, -limit, limit);
 }
 
 /// Force of one electromagnet axis (N, along +u) for control current i and rotor displacement u
 /// (seed 003's law). The displacement is held short of the pole faces: the TDBs stop the rotor
 /// long before, and the law is singular there.
+/// The same with the constant k precomputed (the step's form: no cos per call).
+inline double ElectromagnetForce(double k, double nominal_gap_m, double bias_current_A,
+                                 double current_A, double displacement_m) noexcept {
+  const double g0 = nominal_gap_m;
+  const double u = std::clamp(displacement_m, -0.95 * g0, 0.95 * g0);
+  const double plus = bias_current_A + current_A;
+  const double minus = bias_current_A - current_A;
+  return k * (plus * plus / ((g0 - u) * (g0 - u)) - minus * minus / ((g0 + u) * (g0 + u)));
+}
 inline double ElectromagnetForce(const ElectromagnetParams& e, double current_A,
                                  double displacement_m) noexcept {
-  const double k = ElectromagnetConstant(e);
-  const double g0 = e.nominal_gap_m;
-  const double u = std::clamp(displacement_m, -0.95 * g0, 0.95 * g0);
-  const double plus = e.bias_current_A + current_A;
-  const double minus = e.bias_current_A - current_A;
-  return k * (plus * plus / ((g0 - u) * (g0 - u)) - minus * minus / ((g0 + u) * (g0 + u)));
+  return ElectromagnetForce(ElectromagnetConstant(e), e.nominal_gap_m, e.bias_current_A,
+                            current_A, displacement_m);
 }
 
 /// Control current that makes the static force f at the centre (feedforward for gravity).

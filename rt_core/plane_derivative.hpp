@@ -1,6 +1,7 @@
 #pragma once
 // The equations of motion evaluated by bending plane with the plane size H fixed at compile
 // time, so every product is a small unrolled kernel. Internal to the simulator.
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -56,16 +57,21 @@ void PlaneDerivative(const Model& m, const StateVector& y, const ControlInput& i
       case AmbForceLaw::kLinearisedCurrents: {
         const double ki = amb.params.current_gain_N_per_A;
         const double ks = amb.params.position_gain_N_per_m;
-        f[0] = ki * LimitedCurrent(amb.params, drive.current_A[0]) + ks * ux;
-        f[1] = ki * LimitedCurrent(amb.params, drive.current_A[1]) + ks * uy;
+        f[0] = ki * std::clamp(drive.current_A[0], -amb.current_limit_A, amb.current_limit_A) +
+               ks * ux;
+        f[1] = ki * std::clamp(drive.current_A[1], -amb.current_limit_A, amb.current_limit_A) +
+               ks * uy;
         break;
       }
-      case AmbForceLaw::kElectromagnet:
-        f[0] = ElectromagnetForce(amb.params.electromagnet,
-                                  LimitedCurrent(amb.params, drive.current_A[0]), ux);
-        f[1] = ElectromagnetForce(amb.params.electromagnet,
-                                  LimitedCurrent(amb.params, drive.current_A[1]), uy);
+      case AmbForceLaw::kElectromagnet: {
+        const ElectromagnetParams& e = amb.params.electromagnet;
+        const double lim = amb.current_limit_A;
+        f[0] = ElectromagnetForce(amb.electromagnet_constant, e.nominal_gap_m, e.bias_current_A,
+                                  std::clamp(drive.current_A[0], -lim, lim), ux);
+        f[1] = ElectromagnetForce(amb.electromagnet_constant, e.nominal_gap_m, e.bias_current_A,
+                                  std::clamp(drive.current_A[1], -lim, lim), uy);
         break;
+      }
     }
     fx += (drive.force_scale[0] * f[0]) * sx;
     fy += (drive.force_scale[1] * f[1]) * sy;

@@ -35,6 +35,8 @@ struct PlaneAmb {
   AmbParams params;
   double bias_x_N = 0.0;  ///< equivalent law with gravity compensation
   double bias_y_N = 0.0;
+  double current_limit_A = 0.0;         ///< ControlCurrentLimit
+  double electromagnet_constant = 0.0;  ///< k of the electromagnet law (N m^2/A^2)
 };
 
 /// The reduced equations split by bending plane, which is what the step integrates. Shaft,
