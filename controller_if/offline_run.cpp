@@ -7,9 +7,9 @@
 
 #include "controller_if/current_profile.hpp"
 #include "controller_if/pid_controller.hpp"
+#include "controller_if/power_state.hpp"
 #include "controller_if/sensor_emulator.hpp"
 #include "controller_if/state_dump.hpp"
-#include "rt_core/amb_force.hpp"
 
 namespace ambdrop {
 namespace {
@@ -27,21 +27,6 @@ std::int64_t ControllerSubsteps(const Model& model) {
                                 std::to_string(dt) + " s)");
   }
   return n;
-}
-
-// Scheduled full power failure: after the trigger the motor is off and each AMB's force fades
-// with its flux decay (or vanishes), its currents frozen at their last values.
-void ApplyPowerState(const Model& model, std::int64_t step, ControlInput* in) {
-  const bool powered = model.trigger_step < 0 || step < model.trigger_step;
-  in->motor_on = powered;
-  for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
-    double scale = 1.0;
-    if (!powered) {
-      scale = FluxDecayForceScale(model.params.ambs[a],
-                                  (step - model.trigger_step) * model.params.simulation.step_s);
-    }
-    in->amb[a].force_scale = {scale, scale};
-  }
 }
 
 }  // namespace
@@ -64,7 +49,11 @@ OfflineRunResult RunOffline(const Model& model,
       input.amb[a].current_A = CurrentAt(model.params.ambs[a].current_profile, 0.0);
     }
   }
-  ApplyPowerState(model, 0, &input);
+  PowerState power(model);
+  const PowerEvent failure = ScheduledFailure(model);
+  const PowerEvent restore = ScheduledRestore(model);
+  if (model.trigger_step == 0) power.Apply(failure, 0, input);
+  power.Fill(0, &input);
 
   OfflineRunResult result;
   State state = sim.InitialState(input);
@@ -79,22 +68,22 @@ OfflineRunResult RunOffline(const Model& model,
   }
   while (state.step_index < model.total_steps) {
     const std::int64_t k = state.step_index;
-    ApplyPowerState(model, k, &input);
-    // While powered the currents follow the controller (at its rate) or the profiles; after
-    // the failure the amplifiers are off and the currents stay as they were.
-    if (input.motor_on) {
-      if (internal) {
-        if (k % substeps == 0) {
-          sim.Observe(state, &obs);
-          sensors.Sample(obs, &readings);
-          controller->Update(readings, &input);
-        }
-      } else {
-        for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
-          input.amb[a].current_A = CurrentAt(model.params.ambs[a].current_profile, k * dt);
-        }
+    if (k == model.trigger_step && k > 0) power.Apply(failure, k, input);
+    if (k == model.restore_step) power.Apply(restore, k, input);
+    // The controller (on its own supply) keeps running; an unpowered axis's amplifier is off,
+    // so PowerState overrides its current with the one it had when power failed.
+    if (internal) {
+      if (k % substeps == 0) {
+        sim.Observe(state, &obs);
+        sensors.Sample(obs, &readings);
+        controller->Update(readings, &input);
+      }
+    } else {
+      for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+        input.amb[a].current_A = CurrentAt(model.params.ambs[a].current_profile, k * dt);
       }
     }
+    power.Fill(k, &input);
     const StepStatus status = sim.Step(&state, input);
     if (status != StepStatus::kOk) {
       result.status = status;

@@ -43,9 +43,28 @@ TriggerParams ReadTrigger(const TableReader& root) {
   TriggerParams params;
   const auto table = root.OptionalTable("trigger");
   if (!table) return params;
-  table->AllowOnly({"enabled", "time_s"});
+  table->AllowOnly({"enabled", "time_s", "restore_time_s", "ambs", "axes"});
   params.enabled = table->Bool("enabled", params.enabled);
   params.time_s = table->Number("time_s", NonNegative(), params.time_s);
+  if (table->Has("restore_time_s")) {
+    params.restore_time_s = table->Number(
+        "restore_time_s", NumberRule{.lower = params.time_s,
+                   .lower_inclusive = false,
+                   .what = fmt::format("a number > trigger.time_s = {}", params.time_s)});
+  }
+  if (const toml::array* ambs = table->OptionalArray("ambs", "an array of AMB names")) {
+    for (std::size_t i = 0; i < ambs->size(); ++i) {
+      const auto* name = (*ambs)[i].as_string();
+      if (name == nullptr) {
+        ThrowBadValue((*ambs)[i], table->source_name(), table->KeyPath("ambs"),
+                      "an array of AMB names (strings)");
+      }
+      params.ambs.push_back(name->get());
+    }
+  }
+  const std::string axes = table->Choice("axes", {"xy", "x", "y"}, "xy");
+  params.axis_x = axes != "y";
+  params.axis_y = axes != "x";
   return params;
 }
 

@@ -167,6 +167,9 @@ Model BuildModel(const ModelParams& params) {
 
   const double dt = params.simulation.step_s;
   m.trigger_step = params.trigger.enabled ? std::llround(params.trigger.time_s / dt) : -1;
+  m.restore_step = params.trigger.enabled && params.trigger.restore_time_s >= 0.0
+                       ? std::llround(params.trigger.restore_time_s / dt)
+                       : -1;
   m.total_steps = std::llround(params.simulation.duration_s / dt);
   return m;
 }

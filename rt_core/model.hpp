@@ -39,6 +39,7 @@ struct Model {
 
   int state_size = 0;
   std::int64_t trigger_step = -1;  ///< first step without AMB forces (-1: never)
+  std::int64_t restore_step = -1;  ///< first step with power back (-1: never)
   std::int64_t total_steps = 0;
 
   int modes() const { return rotor.size; }

@@ -80,10 +80,15 @@ struct GravityParams {
   double acceleration_m_s2 = 9.81;  ///< along -y
 };
 
-/// Scheduled shutdown: the AMB forces vanish at this time.
+/// Scheduled shutdown: the AMB forces vanish at this time (with flux decay, they fade). It can
+/// be partial (some AMBs, some axes: the motor keeps running) and power can come back.
 struct TriggerParams {
   bool enabled = true;
   double time_s = 0.2;
+  double restore_time_s = -1.0;    ///< power returns at this time; < 0: never
+  std::vector<std::string> ambs;   ///< AMBs that lose power; empty: all (a full power failure)
+  bool axis_x = true;              ///< axes that lose power
+  bool axis_y = true;
 };
 
 enum class InitialPosition {

@@ -155,6 +155,23 @@ derivative_filter_s = 7e-5
   EXPECT_EQ(p.controller.pid.sensor_gain_V_per_m, 20000.0);  // seed 003's default
 }
 
+TEST(ConfigHil, TriggerPartialAndRestore) {
+  const ModelParams p = LoadConfigFromString(
+      kRigid + "[trigger]\ntime_s = 0.1\nrestore_time_s = 0.2\nambs = [\"a\"]\naxes = \"y\"\n",
+      "test.toml").params;
+  EXPECT_EQ(p.trigger.restore_time_s, 0.2);
+  ASSERT_EQ(p.trigger.ambs.size(), 1u);
+  EXPECT_FALSE(p.trigger.axis_x);
+  EXPECT_TRUE(p.trigger.axis_y);
+  EXPECT_THAT(ErrorOf(kRigid + "[trigger]\ntime_s = 0.3\nrestore_time_s = 0.2\n"),
+              HasSubstr("test.toml:13: key 'trigger.restore_time_s': expected a number > "
+                        "trigger.time_s = 0.3 (s), found 0.2"));
+  EXPECT_THAT(ErrorOf(kRigid + "[trigger]\naxes = \"z\"\n"),
+              HasSubstr("test.toml:12: key 'trigger.axes': expected one of \"xy\", \"x\", \"y\""));
+  EXPECT_THAT(ErrorOf(kRigid + "[trigger]\nambs = [1]\n"),
+              HasSubstr("test.toml:12: key 'trigger.ambs': expected an array of AMB names"));
+}
+
 TEST(ConfigBase, DerivedComponentsReplaceAndSectionsMerge) {
   const std::string dir = std::string(AMBDROP_SOURCE_DIR) + "/tests/data/";
   const ModelParams p = LoadConfigFromString(R"(
