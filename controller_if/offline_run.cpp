@@ -6,36 +6,19 @@
 #include <string>
 
 #include "controller_if/current_profile.hpp"
+#include "controller_if/hil_session.hpp"
 #include "controller_if/pid_controller.hpp"
 #include "controller_if/power_state.hpp"
 #include "controller_if/sensor_emulator.hpp"
 #include "controller_if/state_dump.hpp"
 
 namespace ambdrop {
-namespace {
-
-// Physics steps per controller sample; the controller period must be a whole number of steps.
-std::int64_t ControllerSubsteps(const Model& model) {
-  if (model.params.controller.kind == ControllerKind::kNone) return 1;
-  const double dt = model.params.simulation.step_s;
-  const double ratio = 1.0 / (model.params.controller.rate_Hz * dt);
-  const std::int64_t n = std::llround(ratio);
-  if (n < 1 || std::abs(ratio - static_cast<double>(n)) > 1e-6 * ratio) {
-    throw std::invalid_argument("controller.rate_Hz = " +
-                                std::to_string(model.params.controller.rate_Hz) +
-                                ": the controller period must be a whole number of physics steps (" +
-                                std::to_string(dt) + " s)");
-  }
-  return n;
-}
-
-}  // namespace
-
 OfflineRunResult RunOffline(const Model& model,
                             const std::function<void(const Observation&)>& on_output,
                             const std::function<void(double)>& on_progress) {
   const double dt = model.params.simulation.step_s;
-  const std::int64_t substeps = ControllerSubsteps(model);
+  const std::int64_t substeps =
+      model.params.controller.kind == ControllerKind::kNone ? 1 : ControllerSubsteps(model);
   const bool internal = model.params.controller.kind == ControllerKind::kInternalPid;
   Simulator sim(model);
   SensorEmulator sensors(model.params.sensors, static_cast<double>(substeps) * dt);
@@ -56,7 +39,8 @@ OfflineRunResult RunOffline(const Model& model,
   power.Fill(0, &input);
 
   OfflineRunResult result;
-  State state = sim.InitialState(input);
+  // A controller-driven rotor starts levitated on the currents that carry its static load.
+  State state = sim.InitialState(internal ? StaticLoadInput(model) : input);
   const std::int64_t output_every =
       std::max<std::int64_t>(1, std::llround(model.params.simulation.output_interval_s / dt));
   const std::int64_t progress_every = std::max<std::int64_t>(1, model.total_steps / 200);

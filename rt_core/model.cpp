@@ -174,6 +174,17 @@ Model BuildModel(const ModelParams& params) {
   return m;
 }
 
+ControlInput StaticLoadInput(const Model& m) {
+  ControlInput input;
+  for (std::size_t a = 0; a < m.params.ambs.size(); ++a) {
+    for (int axis = 0; axis < 2; ++axis) {
+      input.amb[a].current_A[axis] =
+          CurrentForStaticForce(m.params.ambs[a], m.amb_bias_force_N[a][axis]);
+    }
+  }
+  return input;
+}
+
 ModalVector PoweredEquilibrium(const Model& m, const ControlInput& input) {
   const int n = m.modes();
   Eigen::VectorXd f = m.gravity_force + m.amb_bias_force;

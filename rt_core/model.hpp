@@ -51,6 +51,10 @@ struct Model {
 /// TDB objects, AMB projections and the gravity compensation.
 Model BuildModel(const ModelParams& params);
 
+/// Control currents that carry the static load (amb_bias_force_N) at the centre: the levitated
+/// starting point of a run driven by a controller.
+ControlInput StaticLoadInput(const Model& model);
+
 /// Static equilibrium q of the powered rotor for the given AMB control currents, the
 /// current-driven laws linearised at the centre (zero if singular).
 ModalVector PoweredEquilibrium(const Model& model, const ControlInput& input);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "tools/exit_codes.hpp"
+#include "tools/hil_command.hpp"
 #include "tools/modes_command.hpp"
 #include "tools/sim_command.hpp"
 
@@ -63,6 +64,32 @@ int main(int argc, char** argv) {
       ->type_name("DIR")
       ->capture_default_str();
 
+  ambdrop::HilCommandOptions hil;
+  CLI::App* hil_command = app.add_subcommand(
+      "hil", "Run the emulator against a controller in real time: currents in, sensors out");
+  hil_command->add_option("CONFIG", hil.config_path, "TOML config file")->required();
+  hil_command->add_option("--controller", hil.controller, "internal | lcm[:URL] | can:IFACE")
+      ->capture_default_str();
+  hil_command->add_option("--trigger", hil.trigger,
+                          "at:SECONDS | gpio:CHIP:LINE | can | lcm (default: the config's "
+                          "[trigger] schedule)");
+  hil_command->add_flag("--virtual-clock", hil.virtual_clock,
+                        "Run on simulated time, as fast as possible (offline, tests)");
+  hil_command->add_option("--rt-priority", hil.rt_priority,
+                          "SCHED_FIFO priority of the loop thread (0: normal scheduling)")
+      ->check(CLI::Range(0, 99));
+  hil_command->add_option("--cpu", hil.cpu, "Pin the loop thread to this CPU");
+  hil_command->add_flag("--enforce-rt", hil.enforce_rt,
+                        "Fail if real-time scheduling or memory locking is refused");
+  hil_command->add_option("--watchdog-s", hil.watchdog_timeout_s,
+                          "Controller silence that trips the watchdog (s)")
+      ->capture_default_str();
+  hil_command->add_option("--silence", hil.silence_action, "Watchdog action: hold | zero | stop")
+      ->capture_default_str();
+  hil_command->add_option("--out", hil.out_dir, "Output directory")->capture_default_str();
+  AddSetOption(hil_command, &hil.overrides);
+  hil_command->add_flag("--quiet,-q", hil.quiet, "No summary on stdout");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -81,6 +108,7 @@ int main(int argc, char** argv) {
 
   try {
     if (sim_command->parsed()) return ambdrop::RunSimCommand(sim);
+    if (hil_command->parsed()) return ambdrop::RunHilCommand(hil);
     if (modes_command->parsed()) {
       if (speed_option->count() > 0) modes.speed_rpm = speed_rpm;
       return ambdrop::RunModesCommand(modes);

@@ -1,0 +1,140 @@
+// The HIL session on the virtual clock with the in-process controller reproduces the offline
+// simulation bit for bit (the same drop from the same inputs), through the periodic loop; the
+// watchdog acts on a silent controller.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <vector>
+
+#include "controller_if/hil_session.hpp"
+#include "controller_if/internal_controller_link.hpp"
+#include "controller_if/offline_run.hpp"
+#include "controller_if/periodic_loop.hpp"
+#include "controller_if/rt_clock.hpp"
+#include "malloc_guard.hpp"
+#include "test_configs.hpp"
+
+namespace ambdrop {
+namespace {
+
+Model PidRig(double duration_s) {
+  return BuildModel(testing::LoadTestConfig(
+      "jarroux2019_industrial_pid.toml",
+      {"simulation.duration_s=" + std::to_string(duration_s), "trigger.time_s=0.1"}));
+}
+
+bool SameObservation(const Observation& a, const Observation& b) {
+  return a.time_s == b.time_s && a.spin_speed_rad_s == b.spin_speed_rad_s &&
+         std::memcmp(&a.sensor_xy_m, &b.sensor_xy_m, sizeof(a.sensor_xy_m)) == 0 &&
+         std::memcmp(&a.tdb_journal_xy_m, &b.tdb_journal_xy_m, sizeof(a.tdb_journal_xy_m)) == 0;
+}
+
+TEST(HilSession, VirtualClockRunMatchesTheOfflineSimulation) {
+  const Model model = PidRig(0.15);
+  std::vector<Observation> offline;
+  ASSERT_EQ(RunOffline(model, [&](const Observation& o) { offline.push_back(o); }).status,
+            StepStatus::kOk);
+
+  const std::int64_t substeps = ControllerSubsteps(model);
+  const double period_s = substeps * model.params.simulation.step_s;
+  InternalControllerLink link(model, period_s);
+  ScheduledTrigger trigger(model.params.trigger.time_s, ScheduledFailure(model));
+  auto outputs = std::make_unique<HilSession::OutputRing>();
+  HilSession session(model, &link, {&trigger}, HilOptions{}, outputs.get());
+  VirtualClock clock;
+  PeriodicLoop loop(&clock, std::llround(period_s * 1e9));
+  session.Start(clock.Now());
+  std::vector<Observation> hil;
+  Observation o;
+  LoopRunOptions options;
+  const LoopResult result = loop.Run(
+      [&](const LoopTick& tick) {
+        const bool go_on = session.Period(tick.wake_ns);
+        while (outputs->TryPop(&o)) hil.push_back(o);  // the test drains on the same thread
+        return go_on;
+      },
+      options);
+  EXPECT_EQ(session.stop(), HilStop::kDuration);
+  EXPECT_EQ(result.overruns, 0);
+  EXPECT_EQ(session.counters().power_events, 1);
+  EXPECT_EQ(session.counters().observations_dropped, 0);
+  ASSERT_EQ(hil.size(), offline.size());
+  for (std::size_t i = 0; i < hil.size(); ++i) {
+    ASSERT_TRUE(SameObservation(hil[i], offline[i])) << "observation " << i << " at t = "
+                                                     << offline[i].time_s;
+  }
+  EXPECT_GT(offline.back().tdb[0].normal_force_N, 0.0);  // and it did drop
+}
+
+TEST(HilSession, PeriodIsAllocationFree) {
+  const Model model = PidRig(0.2);
+  const double period_s = ControllerSubsteps(model) * model.params.simulation.step_s;
+  InternalControllerLink link(model, period_s);
+  ScheduledTrigger trigger(0.05, ScheduledFailure(model));
+  auto outputs = std::make_unique<HilSession::OutputRing>();
+  HilSession session(model, &link, {&trigger}, HilOptions{}, outputs.get());
+  session.Start(0);
+  Observation o;
+  std::int64_t allocations = 0;
+  {
+    testing::MallocGuard guard;
+    for (int k = 0; k < 2000; ++k) {  // 0.1 s: through the trigger and the impacts
+      ASSERT_TRUE(session.Period(k * 50'000));
+      while (outputs->TryPop(&o)) {
+      }
+    }
+    allocations = guard.allocations();
+  }
+  EXPECT_EQ(allocations, 0);
+}
+
+// A controller that stops talking after a while.
+class FallsSilent final : public ControllerLink {
+ public:
+  explicit FallsSilent(int periods) : periods_(periods) {}
+  bool PollCurrents(CurrentsMessage* out) noexcept override {
+    if (samples_ > periods_ || !pending_) return false;
+    pending_ = false;
+    out->current_A[0] = {1.0, 2.0};
+    return true;
+  }
+  void SendSensors(const SensorReadings&, std::int64_t, double) noexcept override {
+    ++samples_;  // once per period, and once at the start
+    pending_ = true;
+  }
+
+ private:
+  int periods_;
+  int samples_ = 0;
+  bool pending_ = false;
+};
+
+TEST(HilSession, WatchdogActsOnControllerSilence) {
+  const Model model = PidRig(0.05);
+  for (SilenceAction action : {SilenceAction::kHold, SilenceAction::kZero, SilenceAction::kStop}) {
+    FallsSilent link(100);  // talks for 5 ms, then never again
+    HilSession session(model, &link, {}, HilOptions{2e-3, action});
+    session.Start(0);
+    int periods = 0;
+    while (session.Period(static_cast<std::int64_t>(periods) * 50'000)) ++periods;
+    EXPECT_EQ(session.watchdog().silence_episodes(), 1) << ToString(action);
+    switch (action) {
+      case SilenceAction::kHold:
+        EXPECT_GT(session.counters().watchdog_hold_periods, 0);
+        EXPECT_EQ(session.stop(), HilStop::kDuration);
+        break;
+      case SilenceAction::kZero:
+        EXPECT_GT(session.counters().watchdog_zero_periods, 0);
+        EXPECT_EQ(session.stop(), HilStop::kDuration);
+        break;
+      case SilenceAction::kStop:
+        EXPECT_EQ(session.stop(), HilStop::kWatchdog);
+        // Silent after period 100; stops once 2 ms (40 periods) have passed.
+        EXPECT_NEAR(periods, 100 + 40, 2);
+        break;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace ambdrop

@@ -1,0 +1,27 @@
+#pragma once
+#include <string>
+#include <vector>
+
+namespace ambdrop {
+
+struct HilCommandOptions {
+  std::string config_path;
+  std::string out_dir = "out";
+  std::vector<std::string> overrides;
+  std::string controller = "internal";  ///< internal | lcm[:URL] | can:IFACE
+  std::string trigger;                  ///< at:SECONDS | gpio:CHIP:LINE | can | lcm; "": config
+  bool virtual_clock = false;           ///< run as fast as possible on simulated time
+  int rt_priority = 0;                  ///< SCHED_FIFO priority; 0: normal scheduling
+  int cpu = -1;                         ///< pin the loop thread; -1: any
+  bool enforce_rt = false;              ///< a refused real-time request is an error
+  double watchdog_timeout_s = 5e-3;
+  std::string silence_action = "hold";  ///< hold | zero | stop
+  bool quiet = false;
+};
+
+/// `ambdrop hil`: runs the emulator against a controller in real time (or on a virtual clock):
+/// currents in, emulated sensor readings out, power events from the trigger. Writes
+/// timeseries.csv, summary.json (with the loop's timing statistics) and effective_config.toml.
+int RunHilCommand(const HilCommandOptions& options);
+
+}  // namespace ambdrop
