@@ -36,8 +36,13 @@ HilSession::HilSession(const Model& model, ControllerLink* link,
       output_every_(std::max<std::int64_t>(
           1, std::llround(model.params.simulation.output_interval_s /
                           model.params.simulation.step_s))) {
-  // Levitated on the currents that carry the static load, as `ambdrop sim` starts.
-  state_ = sim_.InitialState(StaticLoadInput(model));
+  // Levitated on the currents that carry the static load, as `ambdrop sim` starts; they stay
+  // applied until the controller's first currents arrive.
+  input_ = StaticLoadInput(model);
+  state_ = sim_.InitialState(input_);
+  for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+    latest_.current_A[a] = input_.amb[a].current_A;
+  }
 }
 
 void HilSession::SendSensors() noexcept {

@@ -19,6 +19,7 @@
 #include "io/json_writer.hpp"
 #include "io/timeseries_csv.hpp"
 #include "tools/exit_codes.hpp"
+#include "tools/lcm_controller_link.hpp"
 #include "tools/run_summary.hpp"
 
 namespace ambdrop {
@@ -66,6 +67,8 @@ int RunHilCommand(const HilCommandOptions& options) {
     return kExitConfig;
   }
 
+  std::unique_ptr<LcmEndpoint> lcm;
+  LcmControllerLink* lcm_trigger = nullptr;
   std::unique_ptr<ControllerLink> link;
   std::vector<std::unique_ptr<TriggerSource>> triggers;
   std::int64_t substeps = 0;
@@ -74,9 +77,18 @@ int RunHilCommand(const HilCommandOptions& options) {
     const double period_s = substeps * model->params.simulation.step_s;
     if (options.controller == "internal") {
       link = std::make_unique<InternalControllerLink>(*model, period_s);
+    } else if (options.controller == "lcm" || options.controller.rfind("lcm:", 0) == 0) {
+      LcmEndpointOptions lcm_options;
+      if (options.controller.size() > 4) lcm_options.url = options.controller.substr(4);
+      lcm = std::make_unique<LcmEndpoint>(lcm_options);
+      lcm->Start();
+      auto lcm_link = std::make_unique<LcmControllerLink>(
+          lcm.get(), static_cast<int>(model->params.sensors.size()));
+      lcm_trigger = lcm_link.get();
+      link = std::move(lcm_link);
     } else {
       throw std::invalid_argument("--controller " + options.controller +
-                                  ": this build offers 'internal' (lcm and can: see the README)");
+                                  ": expected internal or lcm[:URL] (can: see the README)");
     }
     if (options.trigger.empty()) {
       if (model->params.trigger.enabled) {
@@ -84,12 +96,14 @@ int RunHilCommand(const HilCommandOptions& options) {
             model->params.trigger.time_s, ScheduledFailure(*model),
             model->params.trigger.restore_time_s, ScheduledRestore(*model)));
       }
+    } else if (options.trigger == "lcm") {
+      if (lcm_trigger == nullptr) throw std::invalid_argument("--trigger lcm needs --controller lcm");
     } else if (options.trigger.rfind("at:", 0) == 0) {
       const double at = std::stod(options.trigger.substr(3));
       triggers.push_back(std::make_unique<ScheduledTrigger>(at, ScheduledFailure(*model)));
     } else {
       throw std::invalid_argument("--trigger " + options.trigger +
-                                  ": expected at:SECONDS (gpio, can and lcm: see the README)");
+                                  ": expected at:SECONDS or lcm (gpio and can: see the README)");
     }
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
@@ -112,6 +126,7 @@ int RunHilCommand(const HilCommandOptions& options) {
 
   std::vector<TriggerSource*> trigger_ptrs;
   for (auto& t : triggers) trigger_ptrs.push_back(t.get());
+  if (lcm_trigger != nullptr) trigger_ptrs.push_back(lcm_trigger);  // LCM trigger messages
   auto outputs = std::make_unique<HilSession::OutputRing>();
   HilSession session(*model, link.get(), trigger_ptrs, hil, outputs.get());
 
@@ -159,6 +174,7 @@ int RunHilCommand(const HilCommandOptions& options) {
     result = loop->Run([&](const LoopTick& tick) { return session.Period(tick.wake_ns); }, run);
   });
   rt.join();
+  if (lcm) lcm->Stop();
   loop_done.store(true);
   writer.join();
   csv.Close();

@@ -1,0 +1,107 @@
+// ambdrop-controller: a stand-in external AMB controller. It runs the reference PID of a config
+// (the same one `ambdrop sim` uses in process) on the sensor readings ambdrop publishes over LCM
+// and answers with coil currents, so the whole HIL loop can be tried without a controller board:
+//   ambdrop-controller CONFIG --lcm URL     and     ambdrop hil CONFIG --controller lcm:URL
+#include <fmt/format.h>
+#include <lcm/lcm-cpp.hpp>
+
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <optional>
+
+#include "ambdrop_lcm/amb_currents_t.hpp"
+#include "ambdrop_lcm/sensor_readings_t.hpp"
+#include "controller_if/hil_session.hpp"
+#include "controller_if/pid_controller.hpp"
+#include "io/config_loader.hpp"
+#include "rt_core/model.hpp"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+extern "C" void OnSignal(int) { g_stop.store(true); }
+
+class Responder {
+ public:
+  Responder(lcm::LCM* lcm, const ambdrop::Model& model, double period_s, std::string out_channel)
+      : lcm_(lcm), model_(model), controller_(model, period_s), out_(std::move(out_channel)) {}
+
+  void OnSensors(const lcm::ReceiveBuffer*, const std::string&,
+                 const ambdrop_lcm::sensor_readings_t* msg) {
+    ambdrop::SensorReadings readings;
+    const int n = std::min<int>(msg->sensor_count, ambdrop::kMaxSensors);
+    for (int s = 0; s < n; ++s) readings.reading_m[s] = {msg->x_m[s], msg->y_m[s]};
+    controller_.Update(readings, &input_);
+    ambdrop_lcm::amb_currents_t out{};
+    out.utime = std::chrono::duration_cast<std::chrono::microseconds>(
+                    std::chrono::system_clock::now().time_since_epoch())
+                    .count();
+    out.sequence = ++sequence_;
+    out.amb_count = static_cast<int8_t>(model_.params.ambs.size());
+    for (std::size_t a = 0; a < model_.params.ambs.size(); ++a) {
+      out.current_x_A[a] = input_.amb[a].current_A[0];
+      out.current_y_A[a] = input_.amb[a].current_A[1];
+    }
+    lcm_->publish(out_, &out);
+    ++answered_;
+    last_message_ = std::chrono::steady_clock::now();
+  }
+  std::int64_t answered() const { return answered_; }
+  std::chrono::steady_clock::time_point last_message() const { return last_message_; }
+
+ private:
+  lcm::LCM* lcm_;
+  const ambdrop::Model& model_;
+  ambdrop::ReferenceController controller_;
+  ambdrop::ControlInput input_;
+  std::string out_;
+  std::int64_t sequence_ = 0;
+  std::int64_t answered_ = 0;
+  std::chrono::steady_clock::time_point last_message_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"ambdrop-controller: the reference PID as an external controller over LCM"};
+  std::string config_path, url = "udpm://239.255.76.67:7667?ttl=0";
+  std::vector<std::string> overrides;
+  double idle_exit_s = 5.0;
+  app.add_option("CONFIG", config_path, "TOML config (its [controller.pid] and AMBs)")->required();
+  app.add_option("--lcm", url, "LCM URL")->capture_default_str();
+  app.add_option("--set", overrides, "Override a config value (KEY=VALUE)")->take_all();
+  app.add_option("--idle-exit-s", idle_exit_s,
+                 "Exit after this long without sensor messages (once some arrived)")
+      ->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  std::optional<ambdrop::Model> model;
+  try {
+    model.emplace(ambdrop::BuildModel(ambdrop::LoadConfig(config_path, overrides).params));
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  }
+  lcm::LCM lcm(url);
+  if (!lcm.good()) {
+    fmt::print(stderr, "error: cannot open LCM at {}\n", url);
+    return 1;
+  }
+  const double period_s =
+      ambdrop::ControllerSubsteps(*model) * model->params.simulation.step_s;
+  Responder responder(&lcm, *model, period_s, "AMBDROP_CURRENTS");
+  lcm.subscribe("AMBDROP_SENSORS", &Responder::OnSensors, &responder);
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  while (!g_stop.load()) {
+    lcm.handleTimeout(100);
+    const double idle = std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                                      responder.last_message())
+                            .count();
+    if (responder.answered() > 0 && idle > idle_exit_s) break;
+  }
+  fmt::print("ambdrop-controller: answered {} sensor samples\n", responder.answered());
+  return 0;
+}
