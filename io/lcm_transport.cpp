@@ -82,8 +82,10 @@ LcmEndpoint::LcmEndpoint(LcmEndpointOptions options) : options_(std::move(option
 
   lcm_ = std::make_unique<lcm::LCM>(options_.url);
   if (!lcm_->good()) {
+    // udpm's creation self-test fails when multicast has no route (e.g. loopback only).
     throw std::runtime_error("LCM: cannot open URL '" + options_.url +
-                             "' (bad URL, or no route for multicast: see README)");
+                             "': bad URL, or udpm multicast is not routable (on one host: "
+                             "ip route add 239.0.0.0/8 dev lo)");
   }
   lcm_t* c_lcm = lcm_->getUnderlyingLCM();
   // Raw C subscriptions: we decode ourselves into stack objects (fixed-size types, no heap) and

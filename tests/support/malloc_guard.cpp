@@ -18,6 +18,7 @@ void Note() {
 }
 }  // namespace
 
+#ifndef AMBDROP_NO_MALLOC_HOOKS
 extern "C" {
 void* malloc(std::size_t size) {
   Note();
@@ -41,8 +42,17 @@ int posix_memalign(void** out, std::size_t alignment, std::size_t size) {
   return *out ? 0 : 12;  // ENOMEM
 }
 }
+#endif
 
 namespace ambdrop::testing {
+
+bool MallocGuard::Available() {
+#ifdef AMBDROP_NO_MALLOC_HOOKS
+  return false;
+#else
+  return true;
+#endif
+}
 
 MallocGuard::MallocGuard() : start_(count) {
   ++armed;

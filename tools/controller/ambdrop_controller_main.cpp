@@ -92,7 +92,13 @@ int main(int argc, char** argv) {
   const double period_s =
       ambdrop::ControllerSubsteps(*model) * model->params.simulation.step_s;
   Responder responder(&lcm, *model, period_s, "AMBDROP_CURRENTS");
-  lcm.subscribe("AMBDROP_SENSORS", &Responder::OnSensors, &responder);
+  // subscribeFunction, not the member-function subscribe: GCC 12's -fsanitize=vptr crashes on
+  // lcm-cpp's member-function thunk.
+  lcm.subscribeFunction(
+      "AMBDROP_SENSORS",
+      +[](const lcm::ReceiveBuffer* rbuf, const std::string& channel,
+          const ambdrop_lcm::sensor_readings_t* msg, Responder* r) { r->OnSensors(rbuf, channel, msg); },
+      &responder);
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
   while (!g_stop.load()) {
