@@ -39,7 +39,8 @@ std::int64_t CanMonotonicNowNs() noexcept {
   return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
 }
 
-VirtualCanBus::VirtualCanBus(bool fd_capable) : fd_capable_(fd_capable), clock_(&CanMonotonicNowNs) {}
+VirtualCanBus::VirtualCanBus(bool fd_capable)
+    : fd_capable_(fd_capable), clock_(&CanMonotonicNowNs) {}
 
 VirtualCanBus::~VirtualCanBus() {
   // An endpoint left behind would later lock a destroyed mutex: fail loudly now instead.
@@ -173,8 +174,8 @@ ssize_t CanBusDouble::ReadUntil(std::span<std::uint8_t> buffer, bool wait, bool 
   std::memcpy(buffer.data(), slot.bytes.data(), copied);
   if (info != nullptr) {
     info->timestamp_ns = slot.timestamp_ns;
-    info->msg_flags = MSG_DONTROUTE | (slot.own ? MSG_CONFIRM : 0) |
-                      (copied < slot.size ? MSG_TRUNC : 0);
+    info->msg_flags =
+        MSG_DONTROUTE | (slot.own ? MSG_CONFIRM : 0) | (copied < slot.size ? MSG_TRUNC : 0);
   }
   head_ = (head_ + 1) % slots_.size();
   --count_;

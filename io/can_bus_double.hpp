@@ -6,7 +6,7 @@
 //   - a write must be 16 bytes (struct can_frame), or 72 (struct canfd_frame) when the endpoint
 //     enabled FD frames and the bus is FD-capable; a classic len above 8 or an FD len above 64 is
 //     refused too. Refusals return -EINVAL; a bus set down returns -ENETDOWN;
-//   - FD records get CANFD_FDF set, as can_send() does (Linux 6.2+, and 6.1 stable);
+//   - FD records get CANFD_FDF set, as can_send() does (Linux 6.2+ and Debian 12's 6.1);
 //   - every frame goes to every other endpoint (a broadcast medium), and back to the sender only
 //     if it asked (recv_own_msgs); with loopback off, no endpoint sees it (vcan has no wire);
 //   - an endpoint without FD frames silently never sees FD frames; its filters
@@ -17,6 +17,8 @@
 //   - a read returns one whole record (truncated to the buffer with MSG_TRUNC, the rest of that
 //     record discarded, as the kernel does), never 0 bytes: a 0-byte buffer is refused with
 //     -EINVAL (the kernel would return 0 and discard the frame), and there is no end of stream.
+// tests/socketcan_test.cpp (KernelAndDoubleAgreeByteForByte) writes the same records to vcan0
+// and to a double and checks that write results, delivered bytes and msg_flags are identical.
 // The queues are fixed-size rings allocated when an endpoint is made; writes and reads do not
 // allocate. One mutex (per bus) guards the queues: any number of threads may write and read,
 // which covers one writer and one reader per endpoint. The bus must outlive its endpoints.

@@ -20,10 +20,10 @@ struct canfd_frame;
 
 namespace ambdrop {
 
-inline constexpr std::size_t kCanMtu = 16;      ///< sizeof(struct can_frame), bytes
-inline constexpr std::size_t kCanFdMtu = 72;    ///< sizeof(struct canfd_frame), bytes
-inline constexpr int kCanMaxLen = 8;            ///< classic CAN payload, bytes
-inline constexpr int kCanFdMaxLen = 64;         ///< CAN FD payload, bytes
+inline constexpr std::size_t kCanMtu = 16;                 ///< sizeof(struct can_frame), bytes
+inline constexpr std::size_t kCanFdMtu = 72;               ///< sizeof(struct canfd_frame), bytes
+inline constexpr int kCanMaxLen = 8;                       ///< classic CAN payload, bytes
+inline constexpr int kCanFdMaxLen = 64;                    ///< CAN FD payload, bytes
 inline constexpr std::uint32_t kCanSffMaxId = 0x7FF;       ///< 11-bit identifier
 inline constexpr std::uint32_t kCanEffMaxId = 0x1FFFFFFF;  ///< 29-bit identifier
 
@@ -103,9 +103,8 @@ constexpr std::size_t WireSize(const CanFrame& frame) noexcept {
 
 /// Writes `frame` as the kernel's record into `out`: 16 bytes (struct can_frame) or 72 bytes
 /// (struct canfd_frame, with CANFD_FDF set, as the kernel's can_send() sets it on every FD
-/// frame since the CAN XL rework; Debian 12's 6.1 kernels included). Reserved
-/// bytes are written 0. Returns the record size, or 0 (nothing written) for a frame that is not
-/// IsValid.
+/// frame: Linux 6.2+ and Debian 12's 6.1). Reserved bytes are written 0. Returns the record
+/// size, or 0 (nothing written) for a frame that is not IsValid.
 std::size_t ToWire(const CanFrame& frame, std::span<std::uint8_t, kCanFdMtu> out) noexcept;
 
 /// Reads a record as read() returns it from a CAN_RAW socket: 16 bytes → classic, 72 → FD.

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <tuple>
 #include <string_view>
+#include <tuple>
 #include <utility>
 
 #include "io/config_loader.hpp"
@@ -79,9 +79,8 @@ void CheckSignal(const FrameMapSpec& spec, const CanSignalSpec& signal) {
   }
   const int max_len = spec.fd ? kCanFdMaxLen : kCanMaxLen;
   if (layout.byte_offset < 0 || layout.end() > max_len) {
-    Fail(signal, fmt::format("bytes {}..{} do not fit a {} payload of {} bytes",
-                             layout.byte_offset, layout.end() - 1, spec.fd ? "CAN FD" : "classic CAN",
-                             max_len));
+    Fail(signal, fmt::format("bytes {}..{} do not fit a {} payload of {} bytes", layout.byte_offset,
+                             layout.end() - 1, spec.fd ? "CAN FD" : "classic CAN", max_len));
   }
   if (!IsInput(signal.role) && spec.tx_len_bytes > 0 && layout.end() > spec.tx_len_bytes) {
     Fail(signal, fmt::format("bytes {}..{} do not fit the sent length tx_len_bytes = {}",
@@ -111,8 +110,8 @@ void CheckSignal(const FrameMapSpec& spec, const CanSignalSpec& signal) {
 
 void CheckIndex(const FrameMapSpec& spec, const CanSignalSpec& signal) {
   if (signal.axis != 0 && signal.axis != 1) Fail(signal, "axis must be 0 (x) or 1 (y)");
-  const std::size_t count = signal.role == CanSignalRole::kCurrent ? spec.amb_names.size()
-                                                                    : spec.sensor_names.size();
+  const std::size_t count =
+      signal.role == CanSignalRole::kCurrent ? spec.amb_names.size() : spec.sensor_names.size();
   if (signal.index < 0 || static_cast<std::size_t>(signal.index) >= count) {
     Fail(signal, fmt::format("{} index {} out of range (there are {})",
                              signal.role == CanSignalRole::kCurrent ? "AMB" : "sensor",
@@ -129,8 +128,8 @@ void CheckOverlaps(const FrameMapSpec& spec, const std::vector<int>& members) {
       const CanSignalSpec& b = spec.signals[static_cast<std::size_t>(members[j])];
       if (!UsesBytes(a) || !UsesBytes(b)) continue;
       if (IsTrigger(a.role) && IsTrigger(b.role)) continue;
-      const bool overlap = a.layout.byte_offset < b.layout.end() &&
-                           b.layout.byte_offset < a.layout.end();
+      const bool overlap =
+          a.layout.byte_offset < b.layout.end() && b.layout.byte_offset < a.layout.end();
       if (!overlap) continue;
       Fail(b, fmt::format("{} overlap signal '{}' ({}{})", DescribeBytes(b), a.name,
                           a.location.empty() ? "" : a.location + ", ", DescribeBytes(a)));
@@ -156,8 +155,8 @@ std::int64_t ReadRaw(const CanSignalLayout& layout,
   std::uint64_t bits = 0;
   for (int i = 0; i < width; ++i) {
     // Byte i of the value, least significant first.
-    const int position = layout.byte_order == CanByteOrder::kLittle ? layout.byte_offset + i
-                                                                    : layout.end() - 1 - i;
+    const int position =
+        layout.byte_order == CanByteOrder::kLittle ? layout.byte_offset + i : layout.end() - 1 - i;
     bits |= std::uint64_t{data[static_cast<std::size_t>(position)]} << (8 * i);
   }
   const std::uint64_t sign_bit = std::uint64_t{1} << (8 * width - 1);
@@ -171,8 +170,8 @@ void WriteRaw(const CanSignalLayout& layout, std::int64_t raw,
               std::span<std::uint8_t, kCanFdMaxLen> data) noexcept {
   const std::uint64_t bits = static_cast<std::uint64_t>(raw);  // two's complement
   for (int i = 0; i < layout.width_bytes; ++i) {
-    const int position = layout.byte_order == CanByteOrder::kLittle ? layout.byte_offset + i
-                                                                    : layout.end() - 1 - i;
+    const int position =
+        layout.byte_order == CanByteOrder::kLittle ? layout.byte_offset + i : layout.end() - 1 - i;
     data[static_cast<std::size_t>(position)] = static_cast<std::uint8_t>(bits >> (8 * i));
   }
 }
@@ -213,8 +212,9 @@ FrameMap::FrameMap(FrameMapSpec spec) : spec_(std::move(spec)) {
   if (spec_.tx_len_bytes != 0 &&
       (spec_.fd ? !IsCanFdLength(spec_.tx_len_bytes)
                 : (spec_.tx_len_bytes < 0 || spec_.tx_len_bytes > kCanMaxLen))) {
-    fail_spec(fmt::format("tx_len_bytes = {} is not a {} length", spec_.tx_len_bytes,
-                          spec_.fd ? "CAN FD (0..8, 12, 16, 20, 24, 32, 48, 64)" : "classic (0..8)"));
+    fail_spec(
+        fmt::format("tx_len_bytes = {} is not a {} length", spec_.tx_len_bytes,
+                    spec_.fd ? "CAN FD (0..8, 12, 16, 20, 24, 32, 48, 64)" : "classic (0..8)"));
   }
 
   // Each signal alone; then one signal per role (and per index and axis); then by frame.
@@ -227,13 +227,13 @@ FrameMap::FrameMap(FrameMapSpec spec) : spec_(std::move(spec)) {
     const bool indexed =
         signal.role == CanSignalRole::kCurrent || signal.role == CanSignalRole::kSensor;
     if (indexed) CheckIndex(spec_, signal);
-    const auto role_key = std::make_tuple(signal.role, indexed ? signal.index : 0,
-                                          indexed ? signal.axis : 0);
+    const auto role_key =
+        std::make_tuple(signal.role, indexed ? signal.index : 0, indexed ? signal.axis : 0);
     if (const auto [it, inserted] = seen.emplace(role_key, static_cast<int>(i)); !inserted) {
       const CanSignalSpec& first = spec_.signals[static_cast<std::size_t>(it->second)];
-      Fail(signal, fmt::format("a second {} signal for the same quantity as '{}'{}",
-                               RoleName(signal.role), first.name,
-                               first.location.empty() ? "" : " (" + first.location + ")"));
+      Fail(signal,
+           fmt::format("a second {} signal for the same quantity as '{}'{}", RoleName(signal.role),
+                       first.name, first.location.empty() ? "" : " (" + first.location + ")"));
     }
     (IsInput(signal.role) ? inputs_by_key : outputs_by_key)[signal.layout.key()].push_back(
         static_cast<int>(i));
@@ -244,8 +244,7 @@ FrameMap::FrameMap(FrameMapSpec spec) : spec_(std::move(spec)) {
       const CanSignalSpec& out = spec_.signals[static_cast<std::size_t>(it->second.front())];
       Fail(out, fmt::format("id {:#x} is sent by the emulator and also received (signal '{}'{}): "
                             "an id carries one direction only",
-                            out.layout.id, in.name,
-                            in.location.empty() ? "" : ", " + in.location));
+                            out.layout.id, in.name, in.location.empty() ? "" : ", " + in.location));
     }
   }
   for (const auto* by_key : {&inputs_by_key, &outputs_by_key}) {

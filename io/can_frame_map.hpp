@@ -135,9 +135,9 @@ struct FrameMapSpec {
 struct CanCommand {
   /// Coil control currents (x, y) per AMB, A, indexed as FrameMapSpec::amb_names.
   std::array<std::array<double, 2>, kMaxAmbs> current_A{};
-  bool power_on = true;                     ///< false after power_fail, true after power_restore
-  std::uint64_t power_fail_frames = 0;      ///< frames that matched power_fail
-  std::uint64_t power_restore_frames = 0;   ///< frames that matched power_restore
+  bool power_on = true;                    ///< false after power_fail, true after power_restore
+  std::uint64_t power_fail_frames = 0;     ///< frames that matched power_fail
+  std::uint64_t power_restore_frames = 0;  ///< frames that matched power_restore
 };
 
 /// What the emulator reports.
@@ -168,9 +168,9 @@ struct FrameMapCounters {
 };
 
 enum class DecodeResult : std::uint8_t {
-  kApplied,     ///< the frame's signals were applied
-  kUnknownId,   ///< no incoming signal has this id: counted, ignored
-  kMalformed,   ///< known id, but too short (or RTR): counted, ignored
+  kApplied,    ///< the frame's signals were applied
+  kUnknownId,  ///< no incoming signal has this id: counted, ignored
+  kMalformed,  ///< known id, but too short (or RTR): counted, ignored
 };
 
 /// A frame of the map: its id, format and payload length (for incoming frames, the least

@@ -83,10 +83,9 @@ CanSignalLayout ReadLayout(const TableReader& table, const Defaults& defaults, b
                            defaults.fd ? "a CAN FD" : "a classic CAN"));
   }
   layout.is_signed = table.Bool("signed", false);
-  layout.byte_order =
-      table.Choice("byte_order", {kLittle, kBig}, defaults.byte_order) == kLittle
-          ? CanByteOrder::kLittle
-          : CanByteOrder::kBig;
+  layout.byte_order = table.Choice("byte_order", {kLittle, kBig}, defaults.byte_order) == kLittle
+                          ? CanByteOrder::kLittle
+                          : CanByteOrder::kBig;
   return layout;
 }
 
@@ -143,8 +142,8 @@ void ReadAxisGroup(const TableReader& can, std::string_view group, CanSignalRole
     named.AllowOnly({"x", "y"});
     if (!named.Has("x") && !named.Has("y")) {
       throw ConfigError(fmt::format("{}: key '{}': expected [{}.x] and/or [{}.y]",
-                                    NodeLocation(named.table(), defaults.source_name),
-                                    named.path(), named.path(), named.path()));
+                                    NodeLocation(named.table(), defaults.source_name), named.path(),
+                                    named.path(), named.path()));
     }
     const int index = ResolveName(named, name, known, found, noun);
     for (const int axis : {0, 1}) {
@@ -182,8 +181,8 @@ void ReadTriggers(const TableReader& can, const Defaults& defaults,
       signal.layout = ReadLayout(*table, defaults, true);
       const auto width_max = static_cast<std::uint32_t>(RawMax(signal.layout));
       signal.mask = ReadUnsigned(*table, "mask", 1, width_max, "a non-zero bit mask", width_max);
-      signal.value = ReadUnsigned(*table, "value", 0, width_max, "an unsigned raw value",
-                                  std::nullopt);
+      signal.value =
+          ReadUnsigned(*table, "value", 0, width_max, "an unsigned raw value", std::nullopt);
       if ((signal.value & ~signal.mask) != 0) {
         table->Fail("value", fmt::format("a value within mask = {:#x} (else it never matches)",
                                          signal.mask));
@@ -242,7 +241,7 @@ CanNames CanNamesOf(const ModelParams& params) {
 }
 
 CanConfig ReadCanConfig(const TableReader& can, const CanNames* names) {
-  can.AllowOnly({"interface", "exchange_rate_hz", "fd", "bit_rate_switch", "bitrate_bps",
+  can.AllowOnly({"interface", "exchange_rate_Hz", "fd", "bit_rate_switch", "bitrate_bps",
                  "data_bitrate_bps", "byte_order", "tx_len_bytes", "filter_input_ids",
                  "currents_in", "sensors_out", "trigger_in", "status_out"});
   CanConfig config;
@@ -250,9 +249,13 @@ CanConfig ReadCanConfig(const TableReader& can, const CanNames* names) {
   if (config.interface.empty() || config.interface.size() > 15) {
     can.Fail("interface", "an interface name of 1 to 15 characters");
   }
-  config.exchange_rate_hz = can.Number(
-      "exchange_rate_hz", NumberRule{.lower = 0.0, .lower_inclusive = false,
-                                     .what = "a positive number (Hz)"});
+  // The unit goes in the message unless the shared reader already derives it from the key.
+  const bool unit_known = !config_detail::UnitOfKey("exchange_rate_Hz").empty();
+  config.exchange_rate_Hz =
+      can.Number("exchange_rate_Hz",
+                 NumberRule{.lower = 0.0,
+                            .lower_inclusive = false,
+                            .what = unit_known ? "a positive number" : "a positive number (Hz)"});
   config.fd = can.Bool("fd", false);
   if (!config.fd) {
     can.Reject("bit_rate_switch", "no bit_rate_switch with fd = false (classic CAN has none)");
@@ -260,16 +263,18 @@ CanConfig ReadCanConfig(const TableReader& can, const CanNames* names) {
   }
   config.bit_rate_switch = can.Bool("bit_rate_switch", config.fd);
   // ISO 11898-1 caps the nominal rate at 1 Mbit/s; FD data phases run up to ~8-12 Mbit/s.
-  config.bitrate_bps = can.Number(
-      "bitrate_bps",
-      NumberRule{.lower = 0.0, .lower_inclusive = false, .upper = 1e6,
-                 .what = "a number in (0, 1e6] (bit/s)"},
-      1e6);
-  config.data_bitrate_bps = can.Number(
-      "data_bitrate_bps",
-      NumberRule{.lower = 0.0, .lower_inclusive = false, .upper = 20e6,
-                 .what = "a number in (0, 20e6] (bit/s)"},
-      config.bitrate_bps);
+  config.bitrate_bps = can.Number("bitrate_bps",
+                                  NumberRule{.lower = 0.0,
+                                             .lower_inclusive = false,
+                                             .upper = 1e6,
+                                             .what = "a number in (0, 1e6] (bit/s)"},
+                                  1e6);
+  config.data_bitrate_bps = can.Number("data_bitrate_bps",
+                                       NumberRule{.lower = 0.0,
+                                                  .lower_inclusive = false,
+                                                  .upper = 20e6,
+                                                  .what = "a number in (0, 20e6] (bit/s)"},
+                                       config.bitrate_bps);
   config.filter_input_ids = can.Bool("filter_input_ids", true);
 
   Defaults defaults{.fd = config.fd,
@@ -284,8 +289,8 @@ CanConfig ReadCanConfig(const TableReader& can, const CanNames* names) {
     can.Fail("tx_len_bytes", "a CAN FD length: 0..8, 12, 16, 20, 24, 32, 48 or 64");
   }
   ReadAxisGroup(can, "currents_in", CanSignalRole::kCurrent, "scale_A_per_count", "offset_A",
-                "A per count", names != nullptr ? &names->ambs : nullptr, &spec.amb_names,
-                defaults, &spec.signals);
+                "A per count", names != nullptr ? &names->ambs : nullptr, &spec.amb_names, defaults,
+                &spec.signals);
   ReadAxisGroup(can, "sensors_out", CanSignalRole::kSensor, "scale_m_per_count", "offset_m",
                 "m per count", names != nullptr ? &names->sensors : nullptr, &spec.sensor_names,
                 defaults, &spec.signals);
@@ -308,9 +313,9 @@ CanConfig ReadCanConfig(const TableReader& can, const CanNames* names) {
       ++frames;
     }
   }
-  config.bus_load = exchange_time_s * config.exchange_rate_hz;
+  config.bus_load = exchange_time_s * config.exchange_rate_Hz;
   if (config.bus_load > 1.0) {
-    can.Fail("exchange_rate_hz",
+    can.Fail("exchange_rate_Hz",
              fmt::format("a rate the bus can carry: {} frames per exchange take up to {:.1f} us "
                          "at {} bit/s, so at most {:.0f} Hz",
                          frames, exchange_time_s * 1e6, config.bitrate_bps, 1.0 / exchange_time_s));

@@ -7,7 +7,7 @@
 //
 //   [can]
 //   interface = "vcan0"          # required: network interface (can0, vcan0, ...)
-//   exchange_rate_hz = 5000      # required: frames of each id per second, both directions
+//   exchange_rate_Hz = 5000      # required: frames of each id per second, both directions
 //   fd = false                   # CAN FD frames (payload up to 64 bytes)
 //   bit_rate_switch = true       # FD only (default true): data phase at data_bitrate_bps
 //   bitrate_bps = 1000000        # nominal bit rate, bit/s (default 1e6)
@@ -47,7 +47,7 @@
 //   scale_rad_s_per_count = 0.1       #   required, non-zero
 //   offset_rad_s = 0.0
 //
-// A worst-case bus load (bit stuffing included) above 100 % at exchange_rate_hz is an error:
+// A worst-case bus load (bit stuffing included) above 100 % at exchange_rate_Hz is an error:
 // classic CAN at 1 Mbit/s carries about 7 400 frames/s of 8 bytes.
 #include <filesystem>
 #include <string>
@@ -76,13 +76,13 @@ CanNames CanNamesOf(const ModelParams& params);
 /// A validated [can] table.
 struct CanConfig {
   std::string interface;
-  double exchange_rate_hz = 0.0;
+  double exchange_rate_Hz = 0.0;
   bool fd = false;
   bool bit_rate_switch = false;
   double bitrate_bps = 1e6;       ///< nominal bit rate, bit/s
   double data_bitrate_bps = 1e6;  ///< FD data phase, bit/s
   bool filter_input_ids = true;
-  /// Worst-case share of the bus used at exchange_rate_hz (both directions), 0..1.
+  /// Worst-case share of the bus used at exchange_rate_Hz (both directions), 0..1.
   double bus_load = 0.0;
   FrameMap frame_map;
 

@@ -75,9 +75,9 @@ int OpenCanSocket(int* error_number) noexcept {
   } else {
     why = "cannot create the socket";
   }
-  throw CanBusError(fmt::format(
-      "CAN interface '{}': socket(PF_CAN, SOCK_RAW, CAN_RAW) failed with {}: {}", interface,
-      DescribeErrno(error_number), why));
+  throw CanBusError(
+      fmt::format("CAN interface '{}': socket(PF_CAN, SOCK_RAW, CAN_RAW) failed with {}: {}",
+                  interface, DescribeErrno(error_number), why));
 }
 
 void SetIntOption(int fd, int level, int name, int value, const std::string& interface,
@@ -127,10 +127,11 @@ SocketCanBus::SocketCanBus(const SocketCanOptions& options)
   mtu_ = request.ifr_mtu;
   FillIfreq(interface_, &request);
   if (ioctl(fd, SIOCGIFFLAGS, &request) == 0 && (request.ifr_flags & IFF_UP) == 0) {
-    throw CanBusError(fmt::format("CAN interface '{}' is down: 'ip link set up {}' (for an "
-                                  "adapter, set its bitrate first: 'ip link set {} type can "
-                                  "bitrate 1000000')",
-                                  interface_, interface_, interface_));
+    throw CanBusError(
+        fmt::format("CAN interface '{}' is down: 'ip link set up {}' (for an "
+                    "adapter, set its bitrate first: 'ip link set {} type can "
+                    "bitrate 1000000')",
+                    interface_, interface_, interface_));
   }
   const CanSocketOptions& socket_options = options.socket;
   if (socket_options.fd_frames && mtu_ < static_cast<int>(CANFD_MTU)) {
@@ -170,8 +171,7 @@ SocketCanBus::SocketCanBus(const SocketCanOptions& options)
     SetIntOption(fd, SOL_SOCKET, SO_TIMESTAMPNS, 1, interface_, "SO_TIMESTAMPNS");
   }
   if (options.receive_buffer_bytes > 0) {
-    SetIntOption(fd, SOL_SOCKET, SO_RCVBUF, options.receive_buffer_bytes, interface_,
-                 "SO_RCVBUF");
+    SetIntOption(fd, SOL_SOCKET, SO_RCVBUF, options.receive_buffer_bytes, interface_, "SO_RCVBUF");
   }
 
   sockaddr_can address{};
@@ -179,9 +179,9 @@ SocketCanBus::SocketCanBus(const SocketCanOptions& options)
   address.can_ifindex = ifindex;
   if (bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof(address)) != 0) {
     error_number = errno;
-    throw CanBusError(fmt::format(
-        "CAN interface '{}': bind failed with {}{}", interface_, DescribeErrno(error_number),
-        error_number == ENODEV ? ": it is not a CAN interface" : ""));
+    throw CanBusError(fmt::format("CAN interface '{}': bind failed with {}{}", interface_,
+                                  DescribeErrno(error_number),
+                                  error_number == ENODEV ? ": it is not a CAN interface" : ""));
   }
   fd_ = closer.release();
 }

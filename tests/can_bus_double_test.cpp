@@ -93,7 +93,8 @@ TEST(CanBusDouble, FdRecordsOnlyWhenEnabledAndTheBusIsFdCapable) {
   EXPECT_EQ(classic.counters().send_invalid, 1u);
   EXPECT_EQ(fd.Send(Fd(0x10, 12)), CanStatus::kOk);
   EXPECT_EQ(listener.queued(), 1u);
-  EXPECT_EQ(classic.queued(), 0u);  // a classic socket never sees FD frames, and does not count them
+  EXPECT_EQ(classic.queued(),
+            0u);  // a classic socket never sees FD frames, and does not count them
 
   VirtualCanBus classic_bus(/*fd_capable=*/false);  // MTU 16
   CanBusDouble wants_fd(classic_bus, FdOptions());
@@ -336,7 +337,9 @@ TEST(CanBusDouble, SendFailuresMapToStatusesAndCounters) {
   EXPECT_EQ(b.queued(), 1u);
 }
 
-std::int64_t FakeClock() noexcept { return 123'456'789; }
+std::int64_t FakeClock() noexcept {
+  return 123'456'789;
+}
 
 TEST(CanBusDouble, FramesCarryTheBusClockAtTheWrite) {
   VirtualCanBus bus;

@@ -38,8 +38,7 @@ constexpr int RxBit(bool extended, bool rtr) {
 /// Frames received per case, and which (sum of RxBit).
 inline constexpr std::array<int, kCases> kRxCount = {4, 4, 4, 4, 2, 2, 2, 2, 2,
                                                      2, 2, 2, 1, 1, 1, 1, 1, 1};
-inline constexpr std::array<int, kCases> kRxBits = {4369, 4369, 4369, 4369, 17,  4352,
-                                                    17,   4352, 257,  257,  4112, 4112,
-                                                    1,    256,  16,   4096, 1,    256};
+inline constexpr std::array<int, kCases> kRxBits = {
+    4369, 4369, 4369, 4369, 17, 4352, 17, 4352, 257, 257, 4112, 4112, 1, 256, 16, 4096, 1, 256};
 
 }  // namespace ambdrop::can_filter_cases

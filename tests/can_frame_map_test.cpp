@@ -118,8 +118,8 @@ TEST(CanRawCodec, BytePatterns) {
 TEST(CanScaling, PhysicalRoundTripWithinHalfACount) {
   std::mt19937_64 rng(7);
   for (const LayoutCase& c : AllLayouts()) {
-    const CanSignalLayout layout{.width_bytes = c.width, .is_signed = c.is_signed,
-                                 .byte_order = c.order};
+    const CanSignalLayout layout{
+        .width_bytes = c.width, .is_signed = c.is_signed, .byte_order = c.order};
     const CanScaling scaling{.scale = 2.5e-4, .offset = -0.125};
     const double low = RawToPhysical(scaling, RawMin(layout));
     const double high = RawToPhysical(scaling, RawMax(layout));
@@ -245,8 +245,8 @@ TEST(FrameMap, EncodeDecodeRoundTripForEveryLayout) {
 }
 
 TEST(FrameMap, SaturationsAreCountedPerSignal) {
-  const MirroredMaps maps = Mirror(
-      {{1, false, CanByteOrder::kLittle}, {2, true, CanByteOrder::kBig}}, 0x300);
+  const MirroredMaps maps =
+      Mirror({{1, false, CanByteOrder::kLittle}, {2, true, CanByteOrder::kBig}}, 0x300);
   EmulatorOutputs outputs;
   outputs.sensor_xy_m[0][0] = 1e9;   // far above 255 counts
   outputs.sensor_xy_m[0][1] = -1e9;  // far below -32768 counts
@@ -266,8 +266,8 @@ TEST(FrameMap, SaturationsAreCountedPerSignal) {
 }
 
 TEST(FrameMap, EncodeStopsAtTheEndOfTheGivenBuffer) {
-  const MirroredMaps maps = Mirror(
-      {{1, false, CanByteOrder::kLittle}, {2, true, CanByteOrder::kBig}}, 0x300);
+  const MirroredMaps maps =
+      Mirror({{1, false, CanByteOrder::kLittle}, {2, true, CanByteOrder::kBig}}, 0x300);
   std::array<CanFrame, 1> frames;
   FrameMapCounters counters;
   EXPECT_EQ(maps.emulator.Encode(EmulatorOutputs{}, frames, &counters), 1u);
@@ -324,7 +324,7 @@ TEST(FrameMap, CapacitiesAreChecked) {
 
 constexpr std::string_view kConfig = R"([can]
 interface = "vcan0"
-exchange_rate_hz = 1000
+exchange_rate_Hz = 1000
 byte_order = "little"
 
 [can.currents_in.de.x]
@@ -488,7 +488,7 @@ CanFrame Frame(std::uint32_t id, std::initializer_list<std::uint8_t> bytes) {
 TEST(CanConfig, LoadsTheFullSchema) {
   const CanConfig config = LoadCanConfigFromString(std::string(kConfig), kSource);
   EXPECT_EQ(config.interface, "vcan0");
-  EXPECT_EQ(config.exchange_rate_hz, 1000.0);
+  EXPECT_EQ(config.exchange_rate_Hz, 1000.0);
   EXPECT_FALSE(config.fd);
   EXPECT_FALSE(config.bit_rate_switch);
   EXPECT_EQ(config.bitrate_bps, 1e6);
@@ -552,8 +552,7 @@ TEST(CanConfig, UnknownAndMalformedFramesAreCountedAndChangeNothing) {
   command.current_A[1][0] = 7.0;
   const CanCommand before = command;
   FrameMapCounters counters;
-  EXPECT_EQ(map.Decode(Frame(0x102, {1, 2, 3, 4}), &command, &counters),
-            DecodeResult::kUnknownId);
+  EXPECT_EQ(map.Decode(Frame(0x102, {1, 2, 3, 4}), &command, &counters), DecodeResult::kUnknownId);
   CanFrame extended = Frame(0x100, {1, 2, 3, 4});
   extended.extended = true;  // same number, other format: another frame
   EXPECT_EQ(map.Decode(extended, &command, &counters), DecodeResult::kUnknownId);
@@ -565,8 +564,7 @@ TEST(CanConfig, UnknownAndMalformedFramesAreCountedAndChangeNothing) {
   EXPECT_EQ(map.Decode(remote, &command, &counters), DecodeResult::kMalformed);
   EXPECT_EQ(map.Decode(Frame(0x080, {}), &command, &counters), DecodeResult::kMalformed);
   // Sent frames (our own, looped back) are unknown to the decoder too.
-  EXPECT_EQ(map.Decode(Frame(0x200, {0, 0, 0, 0}), &command, &counters),
-            DecodeResult::kUnknownId);
+  EXPECT_EQ(map.Decode(Frame(0x200, {0, 0, 0, 0}), &command, &counters), DecodeResult::kUnknownId);
   EXPECT_EQ(counters.unknown_id, 3u);
   EXPECT_EQ(counters.malformed, 3u);
   EXPECT_EQ(counters.decoded, 0u);
@@ -581,7 +579,7 @@ TEST(CanConfig, EncodesSensorsAndStatus) {
   const FrameMap map = LoadCanConfigFromString(std::string(kConfig), kSource).frame_map;
   EmulatorOutputs outputs;
   outputs.sensor_xy_m[0] = {12.3e-6, -0.1e-6};  // 123 and -1 counts
-  outputs.sensor_xy_m[1] = {0.0, 1e-6};        // ADC-like: 32768 and 32778 counts
+  outputs.sensor_xy_m[1] = {0.0, 1e-6};         // ADC-like: 32768 and 32778 counts
   outputs.power_on = false;
   outputs.in_contact = true;
   outputs.step = 0x1'0000'0005;  // wraps in 4 bytes
@@ -608,8 +606,8 @@ TEST(CanConfig, EncodesSensorsAndStatus) {
 }
 
 TEST(CanConfig, TxLengthAndFdFrames) {
-  std::string text = Replace(kConfig, "byte_order = \"little\"\n",
-                             "byte_order = \"little\"\ntx_len_bytes = 8\n");
+  std::string text =
+      Replace(kConfig, "byte_order = \"little\"\n", "byte_order = \"little\"\ntx_len_bytes = 8\n");
   FrameMap map = LoadCanConfigFromString(text, kSource).frame_map;
   for (const CanFrameShape& shape : map.OutputFrames()) EXPECT_EQ(shape.len, 8);
 
@@ -663,9 +661,9 @@ TEST(CanConfig, TriggerWithoutMatchIsCountedAndAnyFrameTriggers) {
 
 TEST(CanConfig, DecodeAndEncodeDoNotAllocate) {
   const FrameMap map = LoadCanConfigFromString(std::string(kConfig), kSource).frame_map;
-  const std::array<CanFrame, 5> received = {
-      Frame(0x100, {1, 2, 3, 4}), Frame(0x101, {1, 2, 3, 4, 5, 6}), Frame(0x080, {1}),
-      Frame(0x7FF, {}), Frame(0x101, {1})};
+  const std::array<CanFrame, 5> received = {Frame(0x100, {1, 2, 3, 4}),
+                                            Frame(0x101, {1, 2, 3, 4, 5, 6}), Frame(0x080, {1}),
+                                            Frame(0x7FF, {}), Frame(0x101, {1})};
   std::array<CanFrame, 8> sent;
   CanCommand command;
   FrameMapCounters counters;
@@ -721,7 +719,7 @@ TEST(CanConfig, LoadsFromAFile) {
 TEST(CanConfigErrors, UnknownKeys) {
   EXPECT_THAT(ErrorOf(Replace(kConfig, "byte_order = \"little\"", "byte_ordr = \"little\"")),
               StartsWith(At(kConfig, "byte_order = \"little\"") +
-                         "unknown key 'can.byte_ordr' (allowed here: interface, exchange_rate_hz, "
+                         "unknown key 'can.byte_ordr' (allowed here: interface, exchange_rate_Hz, "
                          "fd, bit_rate_switch, bitrate_bps,"));
   const std::string text =
       Replace(kConfig, "scale_A_per_count = 0.001", "scale = 0.001", "[can.currents_in.de.x]");
@@ -825,12 +823,12 @@ TEST(CanConfigErrors, Triggers) {
 
 TEST(CanConfigErrors, FrameLevelRules) {
   // Outgoing signals may not share bytes.
-  std::string text = Replace(kConfig, "byte_offset = 2", "byte_offset = 1", "[can.sensors_out.s_de.y]");
+  std::string text =
+      Replace(kConfig, "byte_offset = 2", "byte_offset = 1", "[can.sensors_out.s_de.y]");
   EXPECT_EQ(ErrorOf(text), At(text, "[can.sensors_out.s_de.y]") +
                                "signal 'can.sensors_out.s_de.y': bytes 1..2 of id 0x200 overlap "
                                "signal 'can.sensors_out.s_de.x' (" +
-                               Loc(text, "[can.sensors_out.s_de.x]") +
-                               ", bytes 0..1 of id 0x200)");
+                               Loc(text, "[can.sensors_out.s_de.x]") + ", bytes 0..1 of id 0x200)");
   // Nor incoming currents.
   text = Replace(kConfig, "byte_offset = 2", "byte_offset = 1", "[can.currents_in.de.y]");
   EXPECT_THAT(ErrorOf(text), HasSubstr("signal 'can.currents_in.de.y': bytes 1..2 of id 0x100 "
@@ -862,38 +860,39 @@ TEST(CanConfigErrors, NamesMustBeTheModels) {
 }
 
 TEST(CanConfigErrors, BusSettings) {
-  std::string text = Replace(kConfig, "exchange_rate_hz = 1000", "exchange_rate_hz = 5000");
+  std::string text = Replace(kConfig, "exchange_rate_Hz = 1000", "exchange_rate_Hz = 5000");
   EXPECT_THAT(ErrorOf(text),
-              StartsWith(At(text, "exchange_rate_hz") +
-                         "key 'can.exchange_rate_hz': expected a rate the bus can carry: 7 "
+              StartsWith(At(text, "exchange_rate_Hz") +
+                         "key 'can.exchange_rate_Hz': expected a rate the bus can carry: 7 "
                          "frames per exchange take up to "));
   EXPECT_THAT(ErrorOf(text), HasSubstr("at 1000000 bit/s, so at most 1"));
   EXPECT_THAT(ErrorOf(text), HasSubstr(" Hz, found 5000"));
-  text = Replace(kConfig, "exchange_rate_hz = 1000", "exchange_rate_hz = 0");
-  EXPECT_EQ(ErrorOf(text), At(text, "exchange_rate_hz") +
-                               "key 'can.exchange_rate_hz': expected a positive number (Hz), "
+  text = Replace(kConfig, "exchange_rate_Hz = 1000", "exchange_rate_Hz = 0");
+  EXPECT_EQ(ErrorOf(text), At(text, "exchange_rate_Hz") +
+                               "key 'can.exchange_rate_Hz': expected a positive number (Hz), "
                                "found 0");
   text = Replace(kConfig, "interface = \"vcan0\"\n", "");
   EXPECT_EQ(ErrorOf(text), "test.toml:1: missing key 'can.interface': expected a string");
   text = Replace(kConfig, "interface = \"vcan0\"", "interface = \"a_very_long_name0\"");
   EXPECT_THAT(ErrorOf(text), HasSubstr("key 'can.interface': expected an interface name of 1 to "
                                        "15 characters, found \"a_very_long_name0\""));
-  text = Replace(kConfig, "exchange_rate_hz = 1000", "exchange_rate_hz = 1000\nbit_rate_switch = true");
+  text = Replace(kConfig, "exchange_rate_Hz = 1000",
+                 "exchange_rate_Hz = 1000\nbit_rate_switch = true");
   EXPECT_EQ(ErrorOf(text), At(text, "bit_rate_switch") +
                                "key 'can.bit_rate_switch': expected no bit_rate_switch with fd = "
                                "false (classic CAN has none), found true");
-  text = Replace(kConfig, "exchange_rate_hz = 1000", "exchange_rate_hz = 1000\nbitrate_bps = 2e6");
+  text = Replace(kConfig, "exchange_rate_Hz = 1000", "exchange_rate_Hz = 1000\nbitrate_bps = 2e6");
   EXPECT_THAT(ErrorOf(text), HasSubstr("key 'can.bitrate_bps': expected a number in (0, 1e6] "
                                        "(bit/s), found 2000000"));
-  text = Replace(kConfig, "exchange_rate_hz = 1000", "exchange_rate_hz = 1000\ntx_len_bytes = 9");
+  text = Replace(kConfig, "exchange_rate_Hz = 1000", "exchange_rate_Hz = 1000\ntx_len_bytes = 9");
   EXPECT_EQ(ErrorOf(text), At(text, "tx_len_bytes") +
                                "key 'can.tx_len_bytes': expected an integer in [0, 8], found 9");
-  text = Replace(kConfig, "exchange_rate_hz = 1000",
-                 "exchange_rate_hz = 1000\nfd = true\ntx_len_bytes = 13");
+  text = Replace(kConfig, "exchange_rate_Hz = 1000",
+                 "exchange_rate_Hz = 1000\nfd = true\ntx_len_bytes = 13");
   EXPECT_EQ(ErrorOf(text), At(text, "tx_len_bytes") +
                                "key 'can.tx_len_bytes': expected a CAN FD length: 0..8, 12, 16, "
                                "20, 24, 32, 48 or 64, found 13");
-  text = Replace(kConfig, "exchange_rate_hz = 1000", "exchange_rate_hz = 1000\ntx_len_bytes = 2");
+  text = Replace(kConfig, "exchange_rate_Hz = 1000", "exchange_rate_Hz = 1000\ntx_len_bytes = 2");
   EXPECT_THAT(ErrorOf(text), HasSubstr("signal 'can.sensors_out.s_de.y': bytes 2..3 do not fit "
                                        "the sent length tx_len_bytes = 2"));
 }
@@ -901,7 +900,7 @@ TEST(CanConfigErrors, BusSettings) {
 TEST(CanConfigErrors, DocumentLevel) {
   EXPECT_EQ(ErrorOf("[simulation]\nstep_s = 1e-5\n"),
             "test.toml:1: missing key 'can': expected a table ([can])");
-  EXPECT_THAT(ErrorOf("[can]\ninterface = \"vcan0\nexchange_rate_hz = 1\n"),
+  EXPECT_THAT(ErrorOf("[can]\ninterface = \"vcan0\nexchange_rate_Hz = 1\n"),
               StartsWith("test.toml:2: "));
 }
 

@@ -83,7 +83,8 @@ TEST(CanFrameLayout, FdRecordIsTheKernelStructWithFdf) {
   frame.fd = true;
   frame.brs = true;
   frame.len = 64;
-  for (int i = 0; i < 64; ++i) frame.data[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(i + 1);
+  for (int i = 0; i < 64; ++i)
+    frame.data[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(i + 1);
   Record record{};
   ASSERT_EQ(ToWire(frame, record), kCanFdMtu);
 
@@ -126,7 +127,7 @@ CanFrame RandomFrame(std::mt19937_64& rng) {
   frame.extended = (rng() & 1) != 0;
   frame.id = static_cast<std::uint32_t>(rng()) & (frame.extended ? kCanEffMaxId : kCanSffMaxId);
   if (frame.fd) {
-    constexpr std::array<int, 16> kLengths = {0,  1,  2,  3,  4,  5,  6,  7,
+    constexpr std::array<int, 16> kLengths = {0, 1,  2,  3,  4,  5,  6,  7,
                                               8, 12, 16, 20, 24, 32, 48, 64};
     frame.len = static_cast<std::uint8_t>(kLengths[rng() % kLengths.size()]);
     frame.brs = (rng() & 1) != 0;

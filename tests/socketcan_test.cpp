@@ -29,8 +29,8 @@
 namespace ambdrop {
 namespace {
 
-using ::testing::HasSubstr;
 using std::chrono::milliseconds;
+using ::testing::HasSubstr;
 
 constexpr char kInterface[] = "vcan0";
 constexpr milliseconds kWait{100};  // plenty for a loopback on vcan
@@ -251,7 +251,7 @@ TEST_F(SocketCan, ReceiveHonoursTheTimeout) {
 
 constexpr char kMapConfig[] = R"([can]
 interface = "vcan0"
-exchange_rate_hz = 1000
+exchange_rate_Hz = 1000
 
 [can.currents_in.de.x]
 id = 0x100
@@ -420,8 +420,8 @@ TEST_F(SocketCan, KernelAndDoubleAgreeByteForByte) {
   record(0x126, 1, 73);
   record(0x127, 9, kCanMtu);
   record(0x128, 65, kCanFdMtu);
-  record(0x900, 1, kCanMtu);                  // an 11-bit frame with bit 11 set: passed on
-  record(CAN_ERR_FLAG | 0x4, 8, kCanMtu);     // an error frame: no default socket gets it
+  record(0x900, 1, kCanMtu);               // an 11-bit frame with bit 11 set: passed on
+  record(CAN_ERR_FLAG | 0x4, 8, kCanMtu);  // an error frame: no default socket gets it
   record(0x129, 64, kCanFdMtu);
 
   VirtualCanBus bus;
