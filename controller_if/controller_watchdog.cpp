@@ -15,9 +15,10 @@ std::optional<SilenceAction> TryParseSilenceAction(std::string_view text) noexce
 
 SilenceAction ParseSilenceAction(std::string_view text) {
   if (const auto action = TryParseSilenceAction(text)) return *action;
-  throw std::invalid_argument("controller silence action: expected \"hold\", \"zero\" or \"stop\", "
-                              "found \"" +
-                              std::string(text) + "\"");
+  throw std::invalid_argument(
+      "controller silence action: expected \"hold\", \"zero\" or \"stop\", "
+      "found \"" +
+      std::string(text) + "\"");
 }
 
 std::string_view ToString(SilenceAction action) noexcept {

@@ -11,11 +11,11 @@ std::int64_t ControllerSubsteps(const Model& model) {
   const double ratio = 1.0 / (model.params.controller.rate_Hz * dt);
   const std::int64_t n = std::llround(ratio);
   if (n < 1 || std::abs(ratio - static_cast<double>(n)) > 1e-6 * ratio) {
-    throw std::invalid_argument("controller.rate_Hz = " +
-                                std::to_string(model.params.controller.rate_Hz) +
-                                ": the controller period must be a whole number of physics "
-                                "steps (" +
-                                std::to_string(dt) + " s)");
+    throw std::invalid_argument(
+        "controller.rate_Hz = " + std::to_string(model.params.controller.rate_Hz) +
+        ": the controller period must be a whole number of physics "
+        "steps (" +
+        std::to_string(dt) + " s)");
   }
   return n;
 }
@@ -33,9 +33,9 @@ HilSession::HilSession(const Model& model, ControllerLink* link,
       power_(model),
       watchdog_(std::llround(options.watchdog_timeout_s * 1e9), options.silence_action),
       substeps_(ControllerSubsteps(model)),
-      output_every_(std::max<std::int64_t>(
-          1, std::llround(model.params.simulation.output_interval_s /
-                          model.params.simulation.step_s))) {
+      output_every_(
+          std::max<std::int64_t>(1, std::llround(model.params.simulation.output_interval_s /
+                                                 model.params.simulation.step_s))) {
   // Levitated on the currents that carry the static load, as `ambdrop sim` starts; they stay
   // applied until the controller's first currents arrive.
   input_ = StaticLoadInput(model);

@@ -12,9 +12,9 @@ namespace ambdrop {
 
 /// What the callback is told about the period it runs in.
 struct LoopTick {
-  std::int64_t index = 0;        ///< period number since Run started (0-based), counting missed ones
-  std::int64_t deadline_ns = 0;  ///< when this period was due (ns, clock time)
-  std::int64_t wake_ns = 0;      ///< when the loop actually woke (ns, clock time)
+  std::int64_t index = 0;  ///< period number since Run started (0-based), counting missed ones
+  std::int64_t deadline_ns = 0;    ///< when this period was due (ns, clock time)
+  std::int64_t wake_ns = 0;        ///< when the loop actually woke (ns, clock time)
   std::int64_t missed_before = 0;  ///< periods skipped just before this one after an overrun
 };
 
@@ -39,10 +39,10 @@ struct LoopRunOptions {
 
 /// The counts of one Run. periods == cycles + missed_periods.
 struct LoopResult {
-  std::int64_t periods = 0;         ///< deadlines that elapsed
-  std::int64_t cycles = 0;          ///< callbacks run
-  std::int64_t overruns = 0;        ///< callbacks that finished after the next deadline
-  std::int64_t missed_periods = 0;  ///< deadlines skipped, without a callback, after overruns
+  std::int64_t periods = 0;            ///< deadlines that elapsed
+  std::int64_t cycles = 0;             ///< callbacks run
+  std::int64_t overruns = 0;           ///< callbacks that finished after the next deadline
+  std::int64_t missed_periods = 0;     ///< deadlines skipped, without a callback, after overruns
   std::int64_t first_deadline_ns = 0;  ///< ns, clock time
   std::int64_t end_ns = 0;             ///< clock time (ns) when the last callback returned
   LoopStopReason stop_reason = LoopStopReason::kPeriods;

@@ -18,8 +18,8 @@ double PidAxis::Update(double reading_m) noexcept {
     previous_error_ = e;
     primed_ = true;
   }
-  derivative_ += (p_.kd_s * (e - previous_error_) / dt_ - derivative_) * dt_ /
-                 (p_.derivative_filter_s + dt_);
+  derivative_ +=
+      (p_.kd_s * (e - previous_error_) / dt_ - derivative_) * dt_ / (p_.derivative_filter_s + dt_);
   previous_error_ = e;
   const double candidate = integral_ + p_.ki_per_s * e * dt_;
   const double unlimited =
@@ -51,9 +51,9 @@ ReferenceController::ReferenceController(const Model& model, double period_s)
     }
     const double limit = LimitedCurrent(amb, std::numeric_limits<double>::infinity());
     for (int axis = 0; axis < 2; ++axis) {
-      feedforward_A_[a][axis] =
-          pid.gravity_feedforward ? CurrentForStaticForce(amb, model.amb_bias_force_N[a][axis])
-                                  : 0.0;
+      feedforward_A_[a][axis] = pid.gravity_feedforward
+                                    ? CurrentForStaticForce(amb, model.amb_bias_force_N[a][axis])
+                                    : 0.0;
       axes_[a][axis] = PidAxis(pid, period_s, feedforward_A_[a][axis], limit);
     }
   }

@@ -9,8 +9,8 @@ namespace ambdrop {
 
 /// One axis of seed 003's PID, discretised at the controller period dt:
 ///   e = -Gs * reading (V);  u = kp e + ki * sum(e dt) + D,
-///   D = kd s / (1 + tau_d s) e  by backward Euler:  D += (kd (e - e_prev) / dt - D) dt / (tau_d + dt),
-///   i = Ga u + i_ff (A).
+///   D = kd s / (1 + tau_d s) e  by backward Euler:  D += (kd (e - e_prev) / dt - D) dt / (tau_d +
+///   dt), i = Ga u + i_ff (A).
 /// The integrator stops growing while the output is limited (anti-windup).
 class PidAxis {
  public:

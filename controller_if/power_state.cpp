@@ -67,7 +67,11 @@ PowerEvent Scheduled(const Model& model, bool restore) {
 
 }  // namespace
 
-PowerEvent ScheduledFailure(const Model& model) { return Scheduled(model, false); }
-PowerEvent ScheduledRestore(const Model& model) { return Scheduled(model, true); }
+PowerEvent ScheduledFailure(const Model& model) {
+  return Scheduled(model, false);
+}
+PowerEvent ScheduledRestore(const Model& model) {
+  return Scheduled(model, true);
+}
 
 }  // namespace ambdrop

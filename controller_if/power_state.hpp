@@ -9,8 +9,8 @@ namespace ambdrop {
 
 /// A change of power from any trigger source (GPIO edge, CAN frame, LCM message, schedule).
 struct PowerEvent {
-  bool restore = false;            ///< false: power fails; true: power comes back
-  std::uint32_t amb_mask = ~0u;    ///< bit a: AMB a (model order) is affected
+  bool restore = false;          ///< false: power fails; true: power comes back
+  std::uint32_t amb_mask = ~0u;  ///< bit a: AMB a (model order) is affected
   bool axis_x = true;
   bool axis_y = true;
   bool motor = true;  ///< the drive loses (or regains) power too: a full failure
@@ -33,7 +33,8 @@ class PowerState {
  private:
   const Model* model_;
   bool motor_on_ = true;
-  std::array<std::array<std::int64_t, 2>, kMaxAmbs> lost_at_{{{-1, -1}, {-1, -1}, {-1, -1}, {-1, -1}}};
+  std::array<std::array<std::int64_t, 2>, kMaxAmbs> lost_at_{
+      {{-1, -1}, {-1, -1}, {-1, -1}, {-1, -1}}};
   std::array<std::array<double, 2>, kMaxAmbs> frozen_current_A_{};
   std::int64_t events_ = 0;
 };

@@ -165,9 +165,9 @@ RtGrant RequestRealtime(RtSystem& system, const RtRequest& request) {
     if (error == 0) {
       grant.timer_slack_set = true;
     } else {
-      grant.warnings.push_back(Refusal(
-          "timer slack of " + std::to_string(request.timer_slack_ns) + " ns", error, "",
-          "wake-ups may come up to 50 us late"));
+      grant.warnings.push_back(
+          Refusal("timer slack of " + std::to_string(request.timer_slack_ns) + " ns", error, "",
+                  "wake-ups may come up to 50 us late"));
     }
   }
   // Pin before raising the priority, so the thread does not start competing for a CPU it is
@@ -179,8 +179,7 @@ RtGrant RequestRealtime(RtSystem& system, const RtRequest& request) {
       grant.cpu = request.cpu;
     } else {
       grant.warnings.push_back(Refusal("pinning to CPU " + std::to_string(request.cpu), error,
-                                       AffinityHint(error),
-                                       "the loop may migrate between CPUs"));
+                                       AffinityHint(error), "the loop may migrate between CPUs"));
     }
   }
   if (request.priority != 0) {
@@ -189,9 +188,9 @@ RtGrant RequestRealtime(RtSystem& system, const RtRequest& request) {
       grant.fifo = true;
       grant.priority = request.priority;
     } else {
-      grant.warnings.push_back(
-          Refusal("SCHED_FIFO priority " + std::to_string(request.priority), error,
-                  FifoHint(error), "the loop runs under normal scheduling (SCHED_OTHER)"));
+      grant.warnings.push_back(Refusal("SCHED_FIFO priority " + std::to_string(request.priority),
+                                       error, FifoHint(error),
+                                       "the loop runs under normal scheduling (SCHED_OTHER)"));
     }
   }
   if (request.enforce && !grant.complete()) {

@@ -86,10 +86,10 @@ class RtSystemDouble final : public RtSystem {
 
 /// What a run asks of the operating system, typically from its config.
 struct RtRequest {
-  int priority = 0;          ///< SCHED_FIFO priority 1..99; 0: stay SCHED_OTHER
-  int cpu = -1;              ///< CPU to pin the loop thread to; -1: any
-  bool lock_memory = false;  ///< mlockall the process
-  bool enforce = false;      ///< any failure is an error (throws) instead of a warning
+  int priority = 0;                 ///< SCHED_FIFO priority 1..99; 0: stay SCHED_OTHER
+  int cpu = -1;                     ///< CPU to pin the loop thread to; -1: any
+  bool lock_memory = false;         ///< mlockall the process
+  bool enforce = false;             ///< any failure is an error (throws) instead of a warning
   std::int64_t timer_slack_ns = 1;  ///< timer slack (ns); <= 0: leave unchanged
 };
 

@@ -52,7 +52,8 @@ void SensorEmulator::Sample(const Observation& obs, SensorReadings* out) noexcep
       if (c.delay_samples > 0) {
         if (!c.primed) c.delay_line.fill(v);
         c.delay_line[c.head] = v;
-        const int tail = (c.head - c.delay_samples + kMaxSensorDelaySamples) % kMaxSensorDelaySamples;
+        const int tail =
+            (c.head - c.delay_samples + kMaxSensorDelaySamples) % kMaxSensorDelaySamples;
         c.head = (c.head + 1) % kMaxSensorDelaySamples;
         v = c.delay_line[tail];
       }

@@ -8,8 +8,8 @@ namespace {
 
 void DumpState(const Model& m, const State& s, std::ostringstream& o) {
   const int n = m.modes();
-  o << "  step " << s.step_index << ", t = " << s.step_index * m.params.simulation.step_s
-    << " s, " << (s.power_on ? "powered" : "after the power failure") << "\n";
+  o << "  step " << s.step_index << ", t = " << s.step_index * m.params.simulation.step_s << " s, "
+    << (s.power_on ? "powered" : "after the power failure") << "\n";
   o << "  spin speed " << s.y(m.spin_index()) << " rad/s, spin angle " << s.y(m.spin_angle_index())
     << " rad\n  q  =";
   for (int i = 0; i < n; ++i) o << ' ' << s.y(i);

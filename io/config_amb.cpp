@@ -98,16 +98,15 @@ void ReadCommon(const TableReader& table, const AxialRange& position, AmbParams*
 
 ElectromagnetParams ReadElectromagnet(const TableReader& amb) {
   const TableReader table = amb.Table("electromagnet");
-  table.AllowOnly({"pole_area_m2", "turns", "nominal_gap_m", "bias_current_A",
-                   "pole_half_angle_rad"});
+  table.AllowOnly(
+      {"pole_area_m2", "turns", "nominal_gap_m", "bias_current_A", "pole_half_angle_rad"});
   ElectromagnetParams e;
   e.pole_area_m2 = table.Number("pole_area_m2", Positive());
   e.turns = table.Number("turns", Positive());
   e.nominal_gap_m = table.Number("nominal_gap_m", Positive());
   e.bias_current_A = table.Number("bias_current_A", Positive());
-  e.pole_half_angle_rad =
-      table.Number("pole_half_angle_rad", InHalfOpenRange(0.0, 1.5707963267948966),
-                   e.pole_half_angle_rad);
+  e.pole_half_angle_rad = table.Number(
+      "pole_half_angle_rad", InHalfOpenRange(0.0, 1.5707963267948966), e.pole_half_angle_rad);
   return e;
 }
 
@@ -134,7 +133,8 @@ AmbParams ReadAmb(const std::string& name, const TableReader& table, const Axial
     table.Reject("electromagnet",
                  "no electromagnet table with law = \"linearised_currents\" (it belongs to law = "
                  "\"electromagnet\")");
-    table.AllowOnly(WithCommon({"current_gain_N_per_A", "position_gain_N_per_m", "current_profile"}));
+    table.AllowOnly(
+        WithCommon({"current_gain_N_per_A", "position_gain_N_per_m", "current_profile"}));
     amb.law = AmbForceLaw::kLinearisedCurrents;
     ReadCommon(table, position, &amb);
     amb.current_gain_N_per_A = table.Number("current_gain_N_per_A", AnyNumber());

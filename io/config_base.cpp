@@ -47,16 +47,16 @@ toml::table ResolveBase(toml::table table, const std::filesystem::path& director
     ThrowBadValue(*base_node, source_name, "base", "the path of a base config (a string)");
   }
   if (depth >= kMaxBaseDepth) {
-    ThrowBadValue(*base_node, source_name, "base",
-                  fmt::format("at most {} levels of base configs (is there a cycle?)",
-                              kMaxBaseDepth));
+    ThrowBadValue(
+        *base_node, source_name, "base",
+        fmt::format("at most {} levels of base configs (is there a cycle?)", kMaxBaseDepth));
   }
   const std::filesystem::path base_path = directory / base_node->as_string()->get();
   std::ifstream file(base_path, std::ios::binary);
   if (!file) {
-    ThrowBadValue(*base_node, source_name, "base", "a readable config file",
-                  fmt::format("\"{}\" (cannot open {})", base_node->as_string()->get(),
-                              base_path.string()));
+    ThrowBadValue(
+        *base_node, source_name, "base", "a readable config file",
+        fmt::format("\"{}\" (cannot open {})", base_node->as_string()->get(), base_path.string()));
   }
   std::ostringstream text;
   text << file.rdbuf();

@@ -78,8 +78,8 @@ SensorParams ReadSensor(const std::string& name, const TableReader& table,
     s.noise.seed = static_cast<std::uint64_t>(noise->Integer("seed", 0, 2147483647, 1));
   }
   if (const auto runout = table.OptionalTable("runout")) {
-    runout->AllowOnly({"enabled", "amplitude_1x_m", "phase_1x_rad", "amplitude_2x_m",
-                       "phase_2x_rad"});
+    runout->AllowOnly(
+        {"enabled", "amplitude_1x_m", "phase_1x_rad", "amplitude_2x_m", "phase_2x_rad"});
     s.runout.enabled = runout->Bool("enabled", false);
     s.runout.amplitude_1x_m = runout->Number("amplitude_1x_m", NonNegative(), 0.0);
     s.runout.phase_1x_rad = runout->Number("phase_1x_rad", AnyNumber(), 0.0);

@@ -48,7 +48,8 @@ TriggerParams ReadTrigger(const TableReader& root) {
   params.time_s = table->Number("time_s", NonNegative(), params.time_s);
   if (table->Has("restore_time_s")) {
     params.restore_time_s = table->Number(
-        "restore_time_s", NumberRule{.lower = params.time_s,
+        "restore_time_s",
+        NumberRule{.lower = params.time_s,
                    .lower_inclusive = false,
                    .what = fmt::format("a number > trigger.time_s = {}", params.time_s)});
   }

@@ -51,8 +51,8 @@ inline double ElectromagnetForce(double k, double nominal_gap_m, double bias_cur
 }
 inline double ElectromagnetForce(const ElectromagnetParams& e, double current_A,
                                  double displacement_m) noexcept {
-  return ElectromagnetForce(ElectromagnetConstant(e), e.nominal_gap_m, e.bias_current_A,
-                            current_A, displacement_m);
+  return ElectromagnetForce(ElectromagnetConstant(e), e.nominal_gap_m, e.bias_current_A, current_A,
+                            displacement_m);
 }
 
 /// Control current that makes the static force f at the centre (feedforward for gravity).

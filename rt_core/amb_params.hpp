@@ -18,10 +18,10 @@ enum class AmbForceLaw {
 
 /// Geometry of one axis of a differential-driving heteropolar AMB (seed 003, Sec. 2).
 struct ElectromagnetParams {
-  double pole_area_m2 = 0.0;        ///< A, one pole face
-  double turns = 0.0;               ///< N, per coil
-  double nominal_gap_m = 0.0;       ///< g0, air gap with the rotor centred
-  double bias_current_A = 0.0;      ///< I0
+  double pole_area_m2 = 0.0;                        ///< A, one pole face
+  double turns = 0.0;                               ///< N, per coil
+  double nominal_gap_m = 0.0;                       ///< g0, air gap with the rotor centred
+  double bias_current_A = 0.0;                      ///< I0
   double pole_half_angle_rad = 0.3926990816987241;  ///< alpha: 22.5 deg for an 8-pole stator
 };
 

@@ -85,9 +85,9 @@ struct GravityParams {
 struct TriggerParams {
   bool enabled = true;
   double time_s = 0.2;
-  double restore_time_s = -1.0;    ///< power returns at this time; < 0: never
-  std::vector<std::string> ambs;   ///< AMBs that lose power; empty: all (a full power failure)
-  bool axis_x = true;              ///< axes that lose power
+  double restore_time_s = -1.0;   ///< power returns at this time; < 0: never
+  std::vector<std::string> ambs;  ///< AMBs that lose power; empty: all (a full power failure)
+  bool axis_x = true;             ///< axes that lose power
   bool axis_y = true;
 };
 

@@ -49,7 +49,7 @@ struct PlaneModel {
   PlaneVector modal_stiffness_x, modal_stiffness_y, modal_damping_x, modal_damping_y;
   std::vector<PlaneSupport> bearings;  ///< linear supports, always acting
   std::vector<PlaneAmb> ambs;
-  PlaneMatrix gyroscopic_xy;                   ///< G block: rows q_x, columns q_y
+  PlaneMatrix gyroscopic_xy;  ///< G block: rows q_x, columns q_y
   PlaneMatrix gyroscopic_yx;
   PlaneVector gravity_x, gravity_y;
   std::vector<PlaneStation> tdbs, sensors, unbalances;

@@ -17,7 +17,8 @@ ElectromagnetParams Seed003() {
 
 TEST(Electromagnet, ForceMatchesTheLawByHand) {
   const ElectromagnetParams e = Seed003();
-  const double k = 4e-7 * std::numbers::pi * 130.0 * 130.0 * 1.96e-4 * std::cos(std::numbers::pi / 8) / 4;
+  const double k =
+      4e-7 * std::numbers::pi * 130.0 * 130.0 * 1.96e-4 * std::cos(std::numbers::pi / 8) / 4;
   EXPECT_NEAR(ElectromagnetConstant(e) / k, 1.0, 1e-9);
   // i = 0.5 A, u = 0.05 mm towards the upper pole.
   const double expected = k * (2.5 * 2.5 / (0.2e-3 * 0.2e-3) - 1.5 * 1.5 / (0.3e-3 * 0.3e-3));

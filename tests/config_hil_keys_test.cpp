@@ -48,7 +48,9 @@ bias_current_A = 2.0
 [amb.a.flux_decay]
 enabled = true
 time_constant_s = 1e-3
-)", "test.toml").params;
+)",
+                                             "test.toml")
+                            .params;
   ASSERT_EQ(p.ambs.size(), 1u);
   EXPECT_EQ(p.ambs[0].law, AmbForceLaw::kElectromagnet);
   EXPECT_EQ(p.ambs[0].electromagnet.turns, 130.0);
@@ -121,7 +123,9 @@ seed = 5
 enabled = true
 delay_s = 1e-4
 cutoff_Hz = 2000.0
-)", "test.toml").params;
+)",
+                                             "test.toml")
+                            .params;
   const SensorParams& s = p.sensors[0];
   EXPECT_EQ(s.gain, 0.98);
   EXPECT_EQ(s.output, SensorOutput::kCounts);
@@ -149,16 +153,20 @@ kp = 2.3
 ki_per_s = 10.0
 kd_s = 1.4e-3
 derivative_filter_s = 7e-5
-)", "test.toml").params;
+)",
+                                             "test.toml")
+                            .params;
   EXPECT_EQ(p.controller.kind, ControllerKind::kInternalPid);
   EXPECT_EQ(p.controller.pid.kd_s, 1.4e-3);
   EXPECT_EQ(p.controller.pid.sensor_gain_V_per_m, 20000.0);  // seed 003's default
 }
 
 TEST(ConfigHil, TriggerPartialAndRestore) {
-  const ModelParams p = LoadConfigFromString(
-      kRigid + "[trigger]\ntime_s = 0.1\nrestore_time_s = 0.2\nambs = [\"a\"]\naxes = \"y\"\n",
-      "test.toml").params;
+  const ModelParams p =
+      LoadConfigFromString(
+          kRigid + "[trigger]\ntime_s = 0.1\nrestore_time_s = 0.2\nambs = [\"a\"]\naxes = \"y\"\n",
+          "test.toml")
+          .params;
   EXPECT_EQ(p.trigger.restore_time_s, 0.2);
   ASSERT_EQ(p.trigger.ambs.size(), 1u);
   EXPECT_FALSE(p.trigger.axis_x);
@@ -183,7 +191,9 @@ position_m = 0.1
 law = "linearised_currents"
 current_gain_N_per_A = 100.0
 position_gain_N_per_m = 1e5
-)", dir + "derived.toml").params;
+)",
+                                             dir + "derived.toml")
+                            .params;
   EXPECT_EQ(p.rotor.rigid.mass_kg, 12.0);          // merged key by key
   EXPECT_EQ(p.rotor.rigid.centre_of_mass_m, 0.2);  // kept from the base
   ASSERT_EQ(p.ambs.size(), 1u);

@@ -60,8 +60,8 @@ TEST(HilSession, VirtualClockRunMatchesTheOfflineSimulation) {
   EXPECT_EQ(session.counters().observations_dropped, 0);
   ASSERT_EQ(hil.size(), offline.size());
   for (std::size_t i = 0; i < hil.size(); ++i) {
-    ASSERT_TRUE(SameObservation(hil[i], offline[i])) << "observation " << i << " at t = "
-                                                     << offline[i].time_s;
+    ASSERT_TRUE(SameObservation(hil[i], offline[i]))
+        << "observation " << i << " at t = " << offline[i].time_s;
   }
   EXPECT_GT(offline.back().tdb[0].normal_force_N, 0.0);  // and it did drop
 }

@@ -21,7 +21,8 @@ struct Trace {
 
 Trace RunScenario(std::vector<std::string> overrides) {
   overrides.push_back("simulation.duration_s=0.6");
-  const Model model = BuildModel(testing::LoadTestConfig("jarroux2019_industrial_pid.toml", overrides));
+  const Model model =
+      BuildModel(testing::LoadTestConfig("jarroux2019_industrial_pid.toml", overrides));
   Trace t;
   const OfflineRunResult r = RunOffline(model, [&](const Observation& o) {
     t.last = o;

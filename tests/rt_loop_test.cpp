@@ -302,8 +302,8 @@ TEST(PeriodicLoop, ExactAbsoluteDeadlines) {
   PeriodicLoop loop(&clock, 50'000);  // 20 kHz
   std::vector<LoopTick> ticks;
   ticks.reserve(100);
-  const LoopResult r = loop.Run([&](const LoopTick& t) { ticks.push_back(t); },
-                                LoopRunOptions{.max_periods = 100});
+  const LoopResult r =
+      loop.Run([&](const LoopTick& t) { ticks.push_back(t); }, LoopRunOptions{.max_periods = 100});
   EXPECT_EQ(r.stop_reason, LoopStopReason::kPeriods);
   EXPECT_EQ(r.periods, 100);
   EXPECT_EQ(r.cycles, 100);
@@ -429,8 +429,8 @@ TEST(PeriodicLoop, InjectedLatenessIsMeasuredAndDoesNotDrift) {
   PeriodicLoop loop(&clock, 1'000);
   std::vector<LoopTick> ticks;
   ticks.reserve(1000);
-  const LoopResult r = loop.Run([&](const LoopTick& t) { ticks.push_back(t); },
-                                LoopRunOptions{.max_periods = 700});
+  const LoopResult r =
+      loop.Run([&](const LoopTick& t) { ticks.push_back(t); }, LoopRunOptions{.max_periods = 700});
   EXPECT_EQ(r.overruns, 0);
   for (std::size_t k = 0; k < ticks.size(); ++k) {
     const std::int64_t deadline = 1'000 * static_cast<std::int64_t>(k + 1);
@@ -518,10 +518,11 @@ TEST(PeriodicLoopRealTime, TwoThousandPeriodsAtOneKilohertz) {
   const TimingSummary s = loop.lateness().Summarize();
   RecordProperty("lateness_p50_ns", std::to_string(s.p50_ns));
   RecordProperty("lateness_max_ns", std::to_string(s.max_ns));
-  std::printf("1 kHz, normal scheduling: lateness p50 %lld ns, p99 %lld ns, max %lld ns, "
-              "overruns %lld\n",
-              static_cast<long long>(s.p50_ns), static_cast<long long>(s.p99_ns),
-              static_cast<long long>(s.max_ns), static_cast<long long>(r.overruns));
+  std::printf(
+      "1 kHz, normal scheduling: lateness p50 %lld ns, p99 %lld ns, max %lld ns, "
+      "overruns %lld\n",
+      static_cast<long long>(s.p50_ns), static_cast<long long>(s.p99_ns),
+      static_cast<long long>(s.max_ns), static_cast<long long>(r.overruns));
 }
 
 TEST(PeriodicLoopRealTime, StopFromAnotherThread) {

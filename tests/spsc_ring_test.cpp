@@ -7,8 +7,8 @@
 
 #include <array>
 #include <atomic>
-#include <memory>
 #include <cstdint>
+#include <memory>
 #include <thread>
 #include <vector>
 

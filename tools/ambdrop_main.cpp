@@ -75,14 +75,16 @@ int main(int argc, char** argv) {
                           "[trigger] schedule)");
   hil_command->add_flag("--virtual-clock", hil.virtual_clock,
                         "Run on simulated time, as fast as possible (offline, tests)");
-  hil_command->add_option("--rt-priority", hil.rt_priority,
-                          "SCHED_FIFO priority of the loop thread (0: normal scheduling)")
+  hil_command
+      ->add_option("--rt-priority", hil.rt_priority,
+                   "SCHED_FIFO priority of the loop thread (0: normal scheduling)")
       ->check(CLI::Range(0, 99));
   hil_command->add_option("--cpu", hil.cpu, "Pin the loop thread to this CPU");
   hil_command->add_flag("--enforce-rt", hil.enforce_rt,
                         "Fail if real-time scheduling or memory locking is refused");
-  hil_command->add_option("--watchdog-s", hil.watchdog_timeout_s,
-                          "Controller silence that trips the watchdog (s)")
+  hil_command
+      ->add_option("--watchdog-s", hil.watchdog_timeout_s,
+                   "Controller silence that trips the watchdog (s)")
       ->capture_default_str();
   hil_command->add_option("--silence", hil.silence_action, "Watchdog action: hold | zero | stop")
       ->capture_default_str();

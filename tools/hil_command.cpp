@@ -28,7 +28,9 @@ namespace {
 namespace fs = std::filesystem;
 
 std::atomic<bool> g_stop{false};
-extern "C" void OnSignal(int) { g_stop.store(true); }
+extern "C" void OnSignal(int) {
+  g_stop.store(true);
+}
 
 const char* StopName(HilStop stop) {
   switch (stop) {
@@ -97,7 +99,8 @@ int RunHilCommand(const HilCommandOptions& options) {
             model->params.trigger.restore_time_s, ScheduledRestore(*model)));
       }
     } else if (options.trigger == "lcm") {
-      if (lcm_trigger == nullptr) throw std::invalid_argument("--trigger lcm needs --controller lcm");
+      if (lcm_trigger == nullptr)
+        throw std::invalid_argument("--trigger lcm needs --controller lcm");
     } else if (options.trigger.rfind("at:", 0) == 0) {
       const double at = std::stod(options.trigger.substr(3));
       triggers.push_back(std::make_unique<ScheduledTrigger>(at, ScheduledFailure(*model)));
@@ -157,8 +160,8 @@ int RunHilCommand(const HilCommandOptions& options) {
     try {
       if (!options.virtual_clock && (options.rt_priority > 0 || options.cpu >= 0)) {
         LinuxRtSystem system;
-        grant = RequestRealtime(system, RtRequest{options.rt_priority, options.cpu, true,
-                                                  options.enforce_rt});
+        grant = RequestRealtime(
+            system, RtRequest{options.rt_priority, options.cpu, true, options.enforce_rt});
       }
     } catch (const std::exception& e) {
       grant.warnings.push_back(std::string("fatal: ") + e.what());
@@ -212,13 +215,16 @@ int RunHilCommand(const HilCommandOptions& options) {
   json.EndObject();
   WriteTextFile(out_dir / "summary.json", json.str());
   if (!options.quiet) {
-    fmt::print("{}: {}, {} periods, {} overruns; lateness p50/p99/max {:.1f}/{:.1f}/{:.1f} us; "
-               "compute p50/p99/max {:.1f}/{:.1f}/{:.1f} us\n",
-               model->params.name, StopName(session.stop()), result.periods, result.overruns,
-               static_cast<double>(loop->lateness().Quantile(0.5)) / 1e3, static_cast<double>(loop->lateness().Quantile(0.99)) / 1e3,
-               static_cast<double>(loop->lateness().max_ns()) / 1e3,
-               static_cast<double>(loop->compute().Quantile(0.5)) / 1e3, static_cast<double>(loop->compute().Quantile(0.99)) / 1e3,
-               static_cast<double>(loop->compute().max_ns()) / 1e3);
+    fmt::print(
+        "{}: {}, {} periods, {} overruns; lateness p50/p99/max {:.1f}/{:.1f}/{:.1f} us; "
+        "compute p50/p99/max {:.1f}/{:.1f}/{:.1f} us\n",
+        model->params.name, StopName(session.stop()), result.periods, result.overruns,
+        static_cast<double>(loop->lateness().Quantile(0.5)) / 1e3,
+        static_cast<double>(loop->lateness().Quantile(0.99)) / 1e3,
+        static_cast<double>(loop->lateness().max_ns()) / 1e3,
+        static_cast<double>(loop->compute().Quantile(0.5)) / 1e3,
+        static_cast<double>(loop->compute().Quantile(0.99)) / 1e3,
+        static_cast<double>(loop->compute().max_ns()) / 1e3);
   }
   if (session.stop() == HilStop::kDiverged) return kExitRunFailed;
   return kExitOk;

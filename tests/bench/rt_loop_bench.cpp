@@ -155,7 +155,8 @@ ConfigResult RunConfig(const std::string& config, const Options& o, std::int64_t
   std::thread runner([&] {
     LinuxRtSystem system;
     out.grant = RequestRealtime(system, RequestFor(config, o));
-    for (const std::string& w : out.grant.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    for (const std::string& w : out.grant.warnings)
+      std::fprintf(stderr, "warning: %s\n", w.c_str());
 
     std::unique_ptr<Simulator> sim;
     State state;
@@ -208,7 +209,8 @@ int main(int argc, char** argv) {
   std::int64_t work_per_period = 0;
   std::string load;
   if (o.physics) {
-    model = std::make_unique<Model>(BuildModel(testing::LoadTestConfig("jarroux2019_industrial.toml")));
+    model =
+        std::make_unique<Model>(BuildModel(testing::LoadTestConfig("jarroux2019_industrial.toml")));
     load = "seed-000 physics, " +
            std::to_string(std::llround(1.0 / o.rate_hz / model->params.simulation.step_s)) +
            " steps/period";
@@ -241,16 +243,16 @@ int main(int argc, char** argv) {
       if (r.grant.pinned) name += ", CPU " + std::to_string(r.grant.cpu);
       if (r.grant.memory_locked) name += ", mlockall";
     }
-    const double minutes =
-        static_cast<double>(r.loop.end_ns - r.loop.first_deadline_ns) / 60e9;
+    const double minutes = static_cast<double>(r.loop.end_ns - r.loop.first_deadline_ns) / 60e9;
     std::printf("| %s | %.1f / %.1f / %.1f / %.1f | %.1f / %.1f / %.1f / %.1f | %.1f | %lld |\n",
-                name.c_str(), Us(r.lateness.p50_ns), Us(r.lateness.p99_ns),
-                Us(r.lateness.p999_ns), Us(r.lateness.max_ns), Us(r.compute.p50_ns),
-                Us(r.compute.p99_ns), Us(r.compute.p999_ns), Us(r.compute.max_ns),
+                name.c_str(), Us(r.lateness.p50_ns), Us(r.lateness.p99_ns), Us(r.lateness.p999_ns),
+                Us(r.lateness.max_ns), Us(r.compute.p50_ns), Us(r.compute.p99_ns),
+                Us(r.compute.p999_ns), Us(r.compute.max_ns),
                 minutes > 0 ? static_cast<double>(r.loop.overruns) / minutes : 0.0,
                 static_cast<long long>(r.loop.missed_periods));
   }
-  std::printf("\nQuantiles are histogram bucket upper edges (<= 6.25 %% above the exact value); "
-              "max is exact.\n");
+  std::printf(
+      "\nQuantiles are histogram bucket upper edges (<= 6.25 %% above the exact value); "
+      "max is exact.\n");
   return 0;
 }

@@ -21,7 +21,9 @@
 namespace {
 
 std::atomic<bool> g_stop{false};
-extern "C" void OnSignal(int) { g_stop.store(true); }
+extern "C" void OnSignal(int) {
+  g_stop.store(true);
+}
 
 class Responder {
  public:
@@ -89,23 +91,23 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "error: cannot open LCM at {}\n", url);
     return 1;
   }
-  const double period_s =
-      ambdrop::ControllerSubsteps(*model) * model->params.simulation.step_s;
+  const double period_s = ambdrop::ControllerSubsteps(*model) * model->params.simulation.step_s;
   Responder responder(&lcm, *model, period_s, "AMBDROP_CURRENTS");
   // subscribeFunction, not the member-function subscribe: GCC 12's -fsanitize=vptr crashes on
   // lcm-cpp's member-function thunk.
   lcm.subscribeFunction(
       "AMBDROP_SENSORS",
       +[](const lcm::ReceiveBuffer* rbuf, const std::string& channel,
-          const ambdrop_lcm::sensor_readings_t* msg, Responder* r) { r->OnSensors(rbuf, channel, msg); },
+          const ambdrop_lcm::sensor_readings_t* msg,
+          Responder* r) { r->OnSensors(rbuf, channel, msg); },
       &responder);
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
   while (!g_stop.load()) {
     lcm.handleTimeout(100);
-    const double idle = std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                                      responder.last_message())
-                            .count();
+    const double idle =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - responder.last_message())
+            .count();
     if (responder.answered() > 0 && idle > idle_exit_s) break;
   }
   fmt::print("ambdrop-controller: answered {} sensor samples\n", responder.answered());
