@@ -21,6 +21,7 @@
 #include "tools/exit_codes.hpp"
 #include "tools/lcm_controller_link.hpp"
 #include "tools/run_summary.hpp"
+#include "tools/tdb_summary_json.hpp"
 
 namespace ambdrop {
 namespace {
@@ -202,16 +203,7 @@ int RunHilCommand(const HilCommandOptions& options) {
   json.Key("observations_dropped").Integer(session.counters().observations_dropped);
   WriteStats(json, "wakeup_lateness", loop->lateness());
   WriteStats(json, "compute_per_period", loop->compute());
-  json.Key("tdbs").BeginObject();
-  for (const TdbSummary& tdb : summary.tdbs()) {
-    json.Key(tdb.name).BeginObject();
-    json.Key("peak_normal_force_N").Number(tdb.peak_normal_force_N);
-    json.Key("max_excursion_over_clearance").Number(tdb.max_excursion_over_clearance);
-    json.Key("first_contact_time_s").Number(tdb.first_contact_time_s);
-    json.Key("spinup_time_s").Number(tdb.spinup_time_s);
-    json.EndObject();
-  }
-  json.EndObject();
+  WriteTdbSummaries(json, summary);
   json.EndObject();
   WriteTextFile(out_dir / "summary.json", json.str());
   if (!options.quiet) {

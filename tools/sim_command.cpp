@@ -22,6 +22,7 @@
 #include "tools/exit_codes.hpp"
 #include "tools/progress_bar.hpp"
 #include "tools/run_summary.hpp"
+#include "tools/tdb_summary_json.hpp"
 
 namespace ambdrop {
 namespace {
@@ -79,16 +80,7 @@ std::string SummaryJson(const RunStatistics& run, const RunSummary& summary) {
   json.Key("trigger_time_s").Number(run.trigger_time_s);
   json.Key("final_spin_speed_rad_s").Number(run.final_spin_speed_rad_s);
   json.Key("observations").Integer(summary.observations());
-  json.Key("tdbs").BeginObject();
-  for (const TdbSummary& tdb : summary.tdbs()) {
-    json.Key(tdb.name).BeginObject();
-    json.Key("peak_normal_force_N").Number(tdb.peak_normal_force_N);
-    json.Key("max_excursion_over_clearance").Number(tdb.max_excursion_over_clearance);
-    json.Key("first_contact_time_s").Number(tdb.first_contact_time_s);
-    json.Key("spinup_time_s").Number(tdb.spinup_time_s);
-    json.EndObject();
-  }
-  json.EndObject();
+  WriteTdbSummaries(json, summary);
   json.EndObject();
   return json.str();
 }
