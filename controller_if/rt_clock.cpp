@@ -12,7 +12,10 @@ std::int64_t MonotonicClock::Now() noexcept {
   return static_cast<std::int64_t>(ts.tv_sec) * kNsPerSecond + ts.tv_nsec;
 }
 
-void MonotonicClock::SleepUntil(std::int64_t deadline_ns) noexcept {
+namespace {
+
+// Sleeps until the absolute CLOCK_MONOTONIC time `deadline_ns`.
+void SleepAbsolute(std::int64_t deadline_ns) noexcept {
   timespec ts{};
   ts.tv_sec = static_cast<time_t>(deadline_ns / kNsPerSecond);
   ts.tv_nsec = static_cast<long>(deadline_ns % kNsPerSecond);
@@ -23,6 +26,22 @@ void MonotonicClock::SleepUntil(std::int64_t deadline_ns) noexcept {
   // With TIMER_ABSTIME the same deadline can be passed again after a signal: no drift from
   // restarting. clock_nanosleep returns the error number itself, not through errno.
   while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+  }
+}
+
+}  // namespace
+
+void MonotonicClock::SleepUntil(std::int64_t deadline_ns) noexcept {
+  if (spin_ns_ == 0) {
+    SleepAbsolute(deadline_ns);
+    return;
+  }
+  const std::int64_t wake_ns = deadline_ns - spin_ns_;
+  if (Now() < wake_ns) SleepAbsolute(wake_ns);
+  while (Now() < deadline_ns) {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();  // tells the core (and a hyperthread sibling) this is a spin
+#endif
   }
 }
 

@@ -25,11 +25,29 @@ class Clock {
 /// Sleeping to an absolute deadline (rather than for a duration) keeps a periodic loop from
 /// drifting: a late wake-up does not push the following deadlines back. The sleep resumes when a
 /// signal interrupts it (EINTR). How late it wakes depends on the timer slack of the calling
-/// thread (50 us by default on Linux; RequestRealtime sets 1 ns) and on the scheduling policy.
+/// thread (50 us by default on Linux; RequestRealtime sets 1 ns), the scheduling policy and the
+/// hypervisor: on the development VM a wake-up comes ~40 us late at the median even under
+/// SCHED_FIFO, most of a 50 us (20 kHz) period.
+///
+/// Optionally the last `spin_ns` before each deadline are spent polling the clock instead of
+/// sleeping, which removes the wake-up latency from the loop at the cost of burning that CPU
+/// time. A spin at least as long as the wake-up latency makes the loop wake on time; with the
+/// spin close to the period the thread never sleeps, and a SCHED_FIFO thread that never sleeps
+/// is throttled by the kernel (sched_rt_runtime_us: 50 ms out of every second by default), so
+/// use long spins only under SCHED_OTHER or with RT throttling turned off on an isolated CPU.
 class MonotonicClock final : public Clock {
  public:
+  /// `spin_ns` (ns, >= 0; negative is taken as 0): how long before each deadline to stop
+  /// sleeping and poll the clock. 0: sleep only.
+  explicit MonotonicClock(std::int64_t spin_ns = 0) noexcept
+      : spin_ns_(spin_ns > 0 ? spin_ns : 0) {}
+
   std::int64_t Now() noexcept override;
   void SleepUntil(std::int64_t deadline_ns) noexcept override;
+  std::int64_t spin_ns() const noexcept { return spin_ns_; }
+
+ private:
+  std::int64_t spin_ns_;
 };
 
 /// Simulated time for offline runs and tests: SleepUntil jumps time forward to the deadline at

@@ -39,7 +39,10 @@ TEST(Amb, LinearisedCurrentLawGivesTheStaticDeflection) {
     a.current_profile = {{0.0, 0.0, i0}};
     p.ambs.push_back(a);
   }
-  p.sensors.push_back({"s", 0.1});
+  SensorParams sensor;
+  sensor.name = std::string(1, 's');
+  sensor.position_m = 0.1;
+  p.sensors.push_back(sensor);
   p.simulation.duration_s = 0.6;  // released centred; the transient decays as exp(-40 t)
   const Model model = BuildModel(p);
   Observation last;
@@ -80,7 +83,10 @@ TEST(Unbalance, SteadyStateResponseMatchesTheAnalyticalAmplitude) {
   const double k = 1e6, c = 500.0, me = 1e-4, spin = 300.0;
   for (double z : {0.1, 0.9}) p.bearings.push_back({"b", z, k, k, c, c});
   p.unbalances.push_back({"u", true, 0.5, 1e-2, me / 1e-2, 0.3});
-  p.sensors.push_back({"s", 0.5});
+  SensorParams sensor;
+  sensor.name = std::string(1, 's');
+  sensor.position_m = 0.5;
+  p.sensors.push_back(sensor);
   p.simulation.spin_speed_rad_s = spin;
   p.simulation.duration_s = 1.5;  // transients decay with tau = M / c = 0.05 s
   const Model model = BuildModel(p);

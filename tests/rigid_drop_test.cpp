@@ -18,7 +18,8 @@ ModelParams DropRig() {
   p.simulation.step_s = 5e-6;
   p.simulation.spin_speed_rad_s = 0.0;
   p.simulation.initial_position = InitialPosition::kCentred;
-  p.trigger = {true, 0.0};
+  p.trigger.enabled = true;
+  p.trigger.time_s = 0.0;
   for (double z : {0.0, 1.0}) {
     TdbParams t;
     t.name = z == 0.0 ? "a" : "b";

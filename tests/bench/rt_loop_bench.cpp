@@ -5,9 +5,11 @@
 //
 //   build/tests/rt_loop_bench [SECONDS=10] [--rate-hz=20000] [--load-us=10] [--physics]
 //                             [--priority=80] [--cpu=1] [--configs=other,slack,fifo]
+//                             [--spin-us=0]
 //
 // --load-us: a fixed amount of arithmetic calibrated to take that long (0: none).
 // --physics: instead, the seed-000 rig's physics: period / 5 us RK4 steps per period.
+// --spin-us: MonotonicClock's spin: poll the clock for the last US before each deadline.
 // Configs: "other" = SCHED_OTHER with the default 50 us timer slack; "slack" = SCHED_OTHER with
 // 1 ns slack; "fifo" = SCHED_FIFO at --priority, pinned to --cpu, mlockall, 1 ns slack.
 #include <algorithm>
@@ -38,6 +40,7 @@ struct Options {
   double seconds = 10.0;
   double rate_hz = 20'000.0;
   double load_us = 10.0;
+  double spin_us = 0.0;
   bool physics = false;
   int priority = 80;
   int cpu = 1;
@@ -47,7 +50,7 @@ struct Options {
 [[noreturn]] void Usage(const char* problem) {
   std::fprintf(stderr,
                "%s\nusage: rt_loop_bench [SECONDS] [--rate-hz=HZ] [--load-us=US] [--physics] "
-               "[--priority=P] [--cpu=C] [--configs=other,slack,fifo]\n",
+               "[--priority=P] [--cpu=C] [--configs=other,slack,fifo] [--spin-us=US]\n",
                problem);
   std::exit(64);
 }
@@ -72,6 +75,8 @@ Options Parse(int argc, char** argv) {
       o.rate_hz = ParseNumber(*v, "--rate-hz");
     } else if (auto v = value("--load-us=")) {
       o.load_us = ParseNumber(*v, "--load-us");
+    } else if (auto v = value("--spin-us=")) {
+      o.spin_us = ParseNumber(*v, "--spin-us");
     } else if (arg == "--physics") {
       o.physics = true;
     } else if (auto v = value("--priority=")) {
@@ -94,7 +99,8 @@ Options Parse(int argc, char** argv) {
       Usage(("unknown argument " + std::string(arg)).c_str());
     }
   }
-  if (o.seconds <= 0 || o.rate_hz <= 0 || o.load_us < 0) Usage("values must be positive");
+  if (o.seconds <= 0 || o.rate_hz <= 0 || o.load_us < 0 || o.spin_us < 0)
+    Usage("values must be positive");
   for (const std::string& c : o.configs) {
     if (c != "other" && c != "slack" && c != "fifo") Usage(("unknown config " + c).c_str());
   }
@@ -170,7 +176,7 @@ ConfigResult RunConfig(const std::string& config, const Options& o, std::int64_t
     }
     const State initial = state;
 
-    MonotonicClock clock;
+    MonotonicClock clock(std::llround(o.spin_us * 1e3));
     const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / o.rate_hz));
     PeriodicLoop loop(&clock, period_ns);
     LoopRunOptions run;
@@ -222,8 +228,8 @@ int main(int argc, char** argv) {
                   static_cast<long long>(work_per_period));
     load = text;
   }
-  std::printf("rt_loop_bench: %.0f Hz for %.1f s per config, load: %s, %u CPUs\n", o.rate_hz,
-              o.seconds, load.c_str(), std::thread::hardware_concurrency());
+  std::printf("rt_loop_bench: %.0f Hz for %.1f s per config, load: %s, spin %.1f us, %u CPUs\n",
+              o.rate_hz, o.seconds, load.c_str(), o.spin_us, std::thread::hardware_concurrency());
 
   std::vector<ConfigResult> results;
   for (const std::string& c : o.configs) {

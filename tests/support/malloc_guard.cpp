@@ -13,7 +13,7 @@ void* __libc_memalign(std::size_t alignment, std::size_t size);
 namespace {
 thread_local int armed = 0;
 thread_local std::int64_t count = 0;
-void Note() {
+[[maybe_unused]] void Note() {
   if (armed > 0) ++count;
 }
 }  // namespace
