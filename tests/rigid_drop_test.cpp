@@ -22,7 +22,7 @@ ModelParams DropRig() {
   p.trigger.time_s = 0.0;
   for (double z : {0.0, 1.0}) {
     TdbParams t;
-    t.name = z == 0.0 ? "a" : "b";
+    t.name = std::string(1, z == 0.0 ? 'a' : 'b');  // not = "a": GCC 12 false -Wrestrict
     t.position_m = z;
     t.journal_radius_m = 0.04;
     t.clearance_m = 0.2e-3;
