@@ -26,6 +26,10 @@ class ControllerLink {
   /// One sample of the sensors for the controller (dropped and counted if the link is full).
   virtual void SendSensors(const SensorReadings& readings, std::int64_t step,
                            double time_s) noexcept = 0;
+  /// The emulator's state at the sample SendSensors is about to send, for links that report
+  /// status besides the sensors (CAN's status frame: power, spin, contact). Called just before
+  /// each SendSensors; links without a status channel ignore it.
+  virtual void ObserveState(const Observation& observation) noexcept { (void)observation; }
 };
 
 /// A source of power events (GPIO edge, CAN or LCM message, a scheduled time). Polled once per

@@ -5,6 +5,7 @@
 #include "controller_if/controller_link.hpp"
 #include "controller_if/controller_watchdog.hpp"
 #include "controller_if/power_state.hpp"
+#include "controller_if/run_record.hpp"
 #include "controller_if/sensor_emulator.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/simulator.hpp"
@@ -15,6 +16,7 @@ namespace ambdrop {
 struct HilOptions {
   double watchdog_timeout_s = 5e-3;  ///< controller silence that trips the watchdog
   SilenceAction silence_action = SilenceAction::kHold;
+  RunRecorder* recorder = nullptr;  ///< receives every input, power event, sample and state
 };
 
 /// Counters of a HIL run (read after it, or from another thread as a snapshot).
@@ -26,6 +28,9 @@ struct HilCounters {
   std::int64_t watchdog_hold_periods = 0;
   std::int64_t watchdog_zero_periods = 0;
   std::int64_t observations_dropped = 0;  ///< output ring full
+  /// Periods the physics advanced without a controller exchange, to catch up after the loop
+  /// missed deadlines (see Period).
+  std::int64_t catch_up_periods = 0;
 };
 
 enum class HilStop { kRunning, kDuration, kWatchdog, kDiverged };
@@ -45,9 +50,18 @@ class HilSession {
   /// Sends the first sensor sample (before period 0) and starts the watchdog at `now_ns`.
   void Start(std::int64_t now_ns) noexcept;
   /// One controller period at clock time `now_ns`; false when the run must end (stop()).
-  bool Period(std::int64_t now_ns) noexcept;
+  /// `missed_before` (LoopTick::missed_before): periods the loop skipped just before this one.
+  /// The physics advances through each of them before this one, so simulated time keeps up with
+  /// wall time and the controller next sees a rotor where the elapsed time puts it: power events
+  /// fire at their period, the newest currents are held, and the sensor emulator takes its sample
+  /// (its delay line and filter count samples) but nothing is sent. Only this period's sample
+  /// goes out: the skipped ones are stale by now, and a burst of them would arrive at the
+  /// controller together and upset its sample-by-sample timing (derivative terms, CAN bus load).
+  bool Period(std::int64_t now_ns, std::int64_t missed_before = 0) noexcept;
 
   HilStop stop() const noexcept { return stop_; }
+  /// What the step reported when the run diverged (kOk otherwise); see DescribeFailure.
+  StepStatus step_status() const noexcept { return step_status_; }
   const State& state() const noexcept { return state_; }
   const HilCounters& counters() const noexcept { return counters_; }
   const ControllerWatchdog& watchdog() const noexcept { return watchdog_; }
@@ -56,6 +70,13 @@ class HilSession {
 
  private:
   void SendSensors() noexcept;
+  void PushObservation() noexcept;
+  // Power events due at `step`, the held currents and the power state into input_.
+  void PrepareInput(std::int64_t step, double time_s) noexcept;
+  // The physics over one period with input_ held; false (stop_ set) if it diverged.
+  bool AdvancePhysics() noexcept;
+  // One skipped period (see Period); false when the run must end.
+  bool CatchUpPeriod() noexcept;
 
   const Model& model_;
   ControllerLink* link_;
@@ -73,7 +94,12 @@ class HilSession {
   Observation obs_;
   SensorReadings readings_;
   HilCounters counters_;
+  RunRecorder* recorder_;
+  bool watchdog_zeroed_ = false;  // the zero currents of this silence are recorded
+  RecordedInput pending_record_;  // this period's input, recorded once the power events are
+  bool pending_record_valid_ = false;
   HilStop stop_ = HilStop::kRunning;
+  StepStatus step_status_ = StepStatus::kOk;
 };
 
 /// Physics steps per controller period; throws if the period is not a whole number of steps.

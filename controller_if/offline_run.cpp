@@ -1,6 +1,7 @@
 #include "controller_if/offline_run.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -15,7 +16,7 @@
 namespace ambdrop {
 OfflineRunResult RunOffline(const Model& model,
                             const std::function<void(const Observation&)>& on_output,
-                            const std::function<void(double)>& on_progress) {
+                            const std::function<void(double)>& on_progress, RunRecorder* recorder) {
   const double dt = model.params.simulation.step_s;
   const std::int64_t substeps =
       model.params.controller.kind == ControllerKind::kNone ? 1 : ControllerSubsteps(model);
@@ -35,37 +36,66 @@ OfflineRunResult RunOffline(const Model& model,
   PowerState power(model);
   const PowerEvent failure = ScheduledFailure(model);
   const PowerEvent restore = ScheduledRestore(model);
-  if (model.trigger_step == 0) power.Apply(failure, 0, input);
+  const auto apply_power = [&](const PowerEvent& event, std::int64_t k) {
+    power.Apply(event, k, input);
+    if (recorder != nullptr) recorder->OnPower(RecordedPower{k, event});
+  };
+  RecordedStart start;
+  for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+    start.loop_current_A[a] = input.amb[a].current_A;
+  }
+  if (model.trigger_step == 0) apply_power(failure, 0);
   power.Fill(0, &input);
 
   OfflineRunResult result;
   // A controller-driven rotor starts levitated on the currents that carry its static load.
-  State state = sim.InitialState(internal ? StaticLoadInput(model) : input);
+  start.equilibrium_input = internal ? StaticLoadInput(model) : input;
+  State state = sim.InitialState(start.equilibrium_input);
+  if (recorder != nullptr) recorder->OnStart(start);
+  // The currents last recorded: a profile's are recorded only when they change.
+  std::array<std::array<double, 2>, kMaxAmbs> recorded_A = start.loop_current_A;
+  const auto record_currents = [&](std::int64_t k) {
+    if (recorder == nullptr) return;
+    RecordedInput in;
+    in.step = k;
+    in.receive_ns = std::llround(static_cast<double>(k) * dt * 1e9);
+    for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+      in.current_A[a] = input.amb[a].current_A;
+    }
+    // Bitwise, so that a change of sign of a zero is recorded too.
+    if (k > 0 && std::memcmp(&in.current_A, &recorded_A, sizeof recorded_A) == 0) return;
+    recorded_A = in.current_A;
+    recorder->OnInput(in);
+  };
   const std::int64_t output_every =
       std::max<std::int64_t>(1, std::llround(model.params.simulation.output_interval_s / dt));
   const std::int64_t progress_every = std::max<std::int64_t>(1, model.total_steps / 200);
   Observation obs;
   SensorReadings readings;
-  if (on_output) {
+  if (on_output || recorder != nullptr) {
     sim.Observe(state, &obs);
-    on_output(obs);
+    if (on_output) on_output(obs);
+    if (recorder != nullptr) recorder->OnState(state, obs);
   }
   while (state.step_index < model.total_steps) {
     const std::int64_t k = state.step_index;
-    if (k == model.trigger_step && k > 0) power.Apply(failure, k, input);
-    if (k == model.restore_step) power.Apply(restore, k, input);
+    if (k == model.trigger_step && k > 0) apply_power(failure, k);
+    if (k == model.restore_step) apply_power(restore, k);
     // The controller (on its own supply) keeps running; an unpowered axis's amplifier is off,
     // so PowerState overrides its current with the one it had when power failed.
     if (internal) {
       if (k % substeps == 0) {
         sim.Observe(state, &obs);
         sensors.Sample(obs, &readings);
+        if (recorder != nullptr) recorder->OnSensors(RecordedSensors{k, obs.time_s, readings});
         controller->Update(readings, &input);
+        record_currents(k);
       }
     } else {
       for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
         input.amb[a].current_A = CurrentAt(model.params.ambs[a].current_profile, k * dt);
       }
+      record_currents(k);
     }
     power.Fill(k, &input);
     const StepStatus status = sim.Step(&state, input);
@@ -74,9 +104,10 @@ OfflineRunResult RunOffline(const Model& model,
       result.failure_message = DescribeFailure(model, status, state);
       break;
     }
-    if (on_output && state.step_index % output_every == 0) {
+    if ((on_output || recorder != nullptr) && state.step_index % output_every == 0) {
       sim.Observe(state, &obs);
-      on_output(obs);
+      if (on_output) on_output(obs);
+      if (recorder != nullptr) recorder->OnState(state, obs);
     }
     if (on_progress && state.step_index % progress_every == 0) {
       on_progress(static_cast<double>(state.step_index) / static_cast<double>(model.total_steps));

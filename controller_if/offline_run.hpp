@@ -3,6 +3,7 @@
 #include <functional>
 #include <string>
 
+#include "controller_if/run_record.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/simulator.hpp"
 
@@ -18,8 +19,10 @@ struct OfflineRunResult {
 /// Runs a model offline on the virtual clock: scheduled trigger, AMB currents from the
 /// configured profiles, an observation every output interval (and at t = 0) passed to
 /// `on_output`. Stops early, with a message and a state dump, if the simulation diverges.
+/// `recorder` (optional) receives every input change, power event, sensor sample and state.
 OfflineRunResult RunOffline(const Model& model,
                             const std::function<void(const Observation&)>& on_output,
-                            const std::function<void(double fraction_done)>& on_progress = {});
+                            const std::function<void(double fraction_done)>& on_progress = {},
+                            RunRecorder* recorder = nullptr);
 
 }  // namespace ambdrop

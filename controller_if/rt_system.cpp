@@ -6,7 +6,9 @@
 #include <sys/prctl.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <stdexcept>
 
 namespace ambdrop {
@@ -146,6 +148,42 @@ std::string Refusal(const std::string& what, int error, const std::string& hint,
 }
 
 }  // namespace
+
+std::optional<RtThrottling> ReadRtThrottling() {
+  const auto read = [](const char* path) -> std::optional<std::int64_t> {
+    std::ifstream file(path);
+    std::int64_t value = 0;
+    if (!(file >> value)) return std::nullopt;
+    return value;
+  };
+  const std::optional<std::int64_t> runtime = read("/proc/sys/kernel/sched_rt_runtime_us");
+  const std::optional<std::int64_t> period = read("/proc/sys/kernel/sched_rt_period_us");
+  if (!runtime || !period || *period <= 0) return std::nullopt;
+  return RtThrottling{*runtime, *period};
+}
+
+std::string RtThrottlingWarning(std::int64_t spin_ns, std::int64_t loop_period_ns,
+                                const RtThrottling& throttling) {
+  if (throttling.runtime_us < 0 || spin_ns <= 0 || loop_period_ns <= 0) return "";
+  if (throttling.period_us <= 0) return "";
+  const double spin_share = static_cast<double>(spin_ns) / static_cast<double>(loop_period_ns);
+  const double allowed_share =
+      static_cast<double>(throttling.runtime_us) / static_cast<double>(throttling.period_us);
+  if (spin_share < 0.5 * allowed_share) return "";
+  char text[512];
+  std::snprintf(text, sizeof(text),
+                "a SCHED_FIFO loop spinning %.1f us of each %.1f us period risks the kernel's RT "
+                "throttling (sched_rt_runtime_us = %lld of sched_rt_period_us = %lld): the loop "
+                "would stall for ~%.0f ms every %.0f ms. Use a shorter spin, normal scheduling, "
+                "or an isolated CPU with throttling off (echo -1 > "
+                "/proc/sys/kernel/sched_rt_runtime_us)",
+                static_cast<double>(spin_ns) / 1e3, static_cast<double>(loop_period_ns) / 1e3,
+                static_cast<long long>(throttling.runtime_us),
+                static_cast<long long>(throttling.period_us),
+                static_cast<double>(throttling.period_us - throttling.runtime_us) / 1e3,
+                static_cast<double>(throttling.period_us) / 1e3);
+  return text;
+}
 
 RtGrant RequestRealtime(RtSystem& system, const RtRequest& request) {
   RtGrant grant;

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -105,6 +106,27 @@ struct RtGrant {
   /// Everything requested was granted.
   bool complete() const { return warnings.empty(); }
 };
+
+/// The kernel's real-time throttling (/proc/sys/kernel/sched_rt_runtime_us and
+/// sched_rt_period_us): SCHED_FIFO threads together may run at most runtime_us out of every
+/// period_us on a CPU; past that they are stopped until the next period starts. Linux's default
+/// is 950 000 of 1 000 000 us, so a FIFO thread that never sleeps stalls ~50 ms every second
+/// (measured here with a MonotonicClock spinning for most of a 50 us period).
+struct RtThrottling {
+  std::int64_t runtime_us = 950'000;  ///< < 0 (-1): throttling off
+  std::int64_t period_us = 1'000'000;
+};
+
+/// The throttling settings from /proc/sys/kernel; nullopt when they cannot be read.
+std::optional<RtThrottling> ReadRtThrottling();
+
+/// A warning (empty: none) when a SCHED_FIFO loop of period `loop_period_ns` that polls the
+/// clock for `spin_ns` before each deadline risks throttling: throttling is on and the spin
+/// alone takes at least half the share the kernel allows (the compute, the wake-up and other RT
+/// threads take the rest). The loop then sleeps too little, or not at all when the wake-up
+/// latency exceeds the time left to sleep.
+std::string RtThrottlingWarning(std::int64_t spin_ns, std::int64_t loop_period_ns,
+                                const RtThrottling& throttling);
 
 /// Applies `request` to the calling thread (and, for memory, the process): call it from the loop
 /// thread before running the loop. Tries every item even after a failure, so the warnings list

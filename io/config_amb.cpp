@@ -98,8 +98,8 @@ void ReadCommon(const TableReader& table, const AxialRange& position, AmbParams*
 
 ElectromagnetParams ReadElectromagnet(const TableReader& amb) {
   const TableReader table = amb.Table("electromagnet");
-  table.AllowOnly(
-      {"pole_area_m2", "turns", "nominal_gap_m", "bias_current_A", "pole_half_angle_rad"});
+  table.AllowOnly({"pole_area_m2", "turns", "nominal_gap_m", "bias_current_A",
+                   "pole_half_angle_rad", "saturation"});
   ElectromagnetParams e;
   e.pole_area_m2 = table.Number("pole_area_m2", Positive());
   e.turns = table.Number("turns", Positive());
@@ -107,6 +107,11 @@ ElectromagnetParams ReadElectromagnet(const TableReader& amb) {
   e.bias_current_A = table.Number("bias_current_A", Positive());
   e.pole_half_angle_rad = table.Number(
       "pole_half_angle_rad", InHalfOpenRange(0.0, 1.5707963267948966), e.pole_half_angle_rad);
+  if (const std::optional<TableReader> saturation = table.OptionalTable("saturation")) {
+    saturation->AllowOnly({"enabled", "flux_density_T"});
+    e.saturation_enabled = saturation->Bool("enabled", false);
+    e.saturation_flux_density_T = saturation->Number("flux_density_T", Positive());
+  }
   return e;
 }
 

@@ -25,15 +25,17 @@ bool IsComponentSection(std::string_view key) {
 }
 
 // Lays `over` onto `base`. depth 0: sections; depth 1 of a component section: whole components.
-void Merge(toml::table& base, const toml::table& over, bool components_replace) {
-  for (const auto& [key, node] : over) {
+// Nodes are moved, not copied: toml++ copies drop a node's source (file and line), which the
+// error messages need.
+void Merge(toml::table& base, toml::table& over, bool components_replace) {
+  for (auto&& [key, node] : over) {
     toml::node* existing = base.get(key.str());
     const bool both_tables = existing && existing->is_table() && node.is_table();
     if (both_tables && !components_replace) {
       Merge(*existing->as_table(), *node.as_table(), false);
       continue;
     }
-    base.insert_or_assign(key.str(), node);
+    base.insert_or_assign(key.str(), std::move(node));
   }
 }
 
@@ -70,12 +72,12 @@ toml::table ResolveBase(toml::table table, const std::filesystem::path& director
   }
   base = ResolveBase(std::move(base), base_path.parent_path(), base_path.string(), depth + 1);
   table.erase("base");
-  for (const auto& [key, node] : table) {
+  for (auto&& [key, node] : table) {
     toml::node* existing = base.get(key.str());
     if (existing && existing->is_table() && node.is_table()) {
       Merge(*existing->as_table(), *node.as_table(), IsComponentSection(key.str()));
     } else {
-      base.insert_or_assign(key.str(), node);
+      base.insert_or_assign(key.str(), std::move(node));
     }
   }
   return base;

@@ -9,6 +9,8 @@
 #include "io/config_base.hpp"
 #include "io/config_overrides.hpp"
 #include "io/config_readers.hpp"
+#include "io/config_realtime.hpp"
+#include "io/config_scenario.hpp"
 #include "io/toml_reader.hpp"
 
 namespace ambdrop {
@@ -27,7 +29,7 @@ toml::table Parse(const std::string& text, const std::string& source_name) {
 
 ModelParams ReadModel(const TableReader& root) {
   root.AllowOnly({"name", "simulation", "gravity", "trigger", "rotor", "bearing", "amb", "sensor",
-                  "tdb", "unbalance", "controller"});
+                  "tdb", "unbalance", "controller", "can", "realtime", "scenario"});
   ModelParams params;
   params.name = root.String("name", "");
   params.simulation = config_detail::ReadSimulation(root);
@@ -69,7 +71,16 @@ LoadedConfig LoadConfigFromString(const std::string& text, const std::string& so
   std::ostringstream effective;
   effective << root << '\n';
   loaded.effective_toml = effective.str();
-  loaded.params = ReadModel(TableReader(root, "", source_name));
+  const TableReader root_reader(root, "", source_name);
+  loaded.params = ReadModel(root_reader);
+  loaded.realtime = ReadRealtimeConfig(root_reader);
+  if (const std::optional<TableReader> scenario = root_reader.OptionalTable("scenario")) {
+    loaded.scenario = ReadScenario(*scenario, loaded.params);
+  }
+  if (const std::optional<TableReader> can = root_reader.OptionalTable("can")) {
+    const CanNames names = CanNamesOf(loaded.params);
+    loaded.can = ReadCanConfig(*can, &names);
+  }
   return loaded;
 }
 

@@ -1,10 +1,14 @@
 #pragma once
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "io/config_can.hpp"
+#include "io/config_realtime.hpp"
 #include "rt_core/model_params.hpp"
+#include "rt_core/scenario_params.hpp"
 
 namespace ambdrop {
 
@@ -18,6 +22,13 @@ class ConfigError : public std::runtime_error {
 
 struct LoadedConfig {
   ModelParams params;
+  /// The [can] table (frame map and bus), if the config has one; its AMB and sensor names are
+  /// the model's, indexed in params' order.
+  std::optional<CanConfig> can;
+  /// The [realtime] table (defaults when absent): scheduling of `ambdrop hil`'s loop thread.
+  RealtimeConfig realtime;
+  /// The [scenario] table of a scenario file (io/config_scenario.hpp), if there is one.
+  std::optional<ScenarioParams> scenario;
   std::string source_path;
   std::string source_text;     ///< the file as read
   std::string effective_toml;  ///< after --set overrides, re-serialised

@@ -1,3 +1,6 @@
+#include <climits>
+#include <numbers>
+
 #include "io/config_readers.hpp"
 #include "rt_core/limits.hpp"
 
@@ -14,6 +17,90 @@ ContactLawParams ReadContactLaw(const TableReader& tdb) {
   params.ribbon_stiffness_N_per_m = table.Number("ribbon_stiffness_N_per_m", Positive());
   params.ribbon_damping_N_s_per_m = table.Number("ribbon_damping_N_s_per_m", NonNegative());
   params.ribbon_crushing_m = table.Number("ribbon_crushing_m", NonNegative());
+  return params;
+}
+
+HuntCrossleyParams ReadHuntCrossley(const TableReader& four_dof, std::string_view key) {
+  const TableReader table = four_dof.Table(key);
+  table.AllowOnly({"stiffness_N_per_m_n", "exponent", "damping_s_per_m"});
+  HuntCrossleyParams params;
+  params.stiffness_N_per_m_n = table.Number("stiffness_N_per_m_n", Positive());
+  params.exponent = table.Number("exponent", InRange(1.0, 2.0));
+  params.damping_s_per_m = table.Number("damping_s_per_m", NonNegative());
+  return params;
+}
+
+BallBearingParams ReadBallBearing(const TableReader& four_dof) {
+  const TableReader table = four_dof.Table("bearing");
+  table.AllowOnly({"balls", "contact_angle_rad", "inner_contact_stiffness_N_per_m1_5",
+                   "outer_contact_stiffness_N_per_m1_5", "operating_load_N", "damping_factor"});
+  BallBearingParams params;
+  if (!table.Has("balls")) table.FailMissing("balls", "an integer >= 1");
+  params.balls = table.Integer("balls", 1, INT_MAX, 0);
+  params.contact_angle_rad =
+      table.Number("contact_angle_rad", InHalfOpenRange(0.0, std::numbers::pi / 2.0));
+  params.inner_contact_stiffness_N_per_m1_5 =
+      table.Number("inner_contact_stiffness_N_per_m1_5", Positive());
+  params.outer_contact_stiffness_N_per_m1_5 =
+      table.Number("outer_contact_stiffness_N_per_m1_5", Positive());
+  params.operating_load_N = table.Number("operating_load_N", Positive());
+  params.damping_factor = table.Number("damping_factor", NonNegative());
+  return params;
+}
+
+KelvinVoigtRibbonParams ReadKelvinVoigt(const TableReader& table) {
+  table.AllowOnly({"stiffness_N_per_m", "damping_N_s_per_m"});
+  KelvinVoigtRibbonParams params;
+  params.stiffness_N_per_m = table.Number("stiffness_N_per_m", Positive());
+  params.damping_N_s_per_m = table.Number("damping_N_s_per_m", NonNegative());
+  return params;
+}
+
+DahlRibbonParams ReadDahl(const TableReader& table) {
+  table.AllowOnly({"slipping_threshold_N", "threshold_scale", "slipping_stiffness_N_per_m",
+                   "beta_per_m", "upper_hardening_N", "upper_hardening_rate_per_m",
+                   "lower_hardening_N", "lower_hardening_rate_per_m"});
+  DahlRibbonParams params;
+  params.slipping_threshold_N = table.Number("slipping_threshold_N", NonNegative());
+  params.threshold_scale = table.Number("threshold_scale", NonNegative(), params.threshold_scale);
+  params.slipping_stiffness_N_per_m = table.Number("slipping_stiffness_N_per_m", NonNegative());
+  params.beta_per_m = table.Number("beta_per_m", Positive());
+  params.upper_hardening_N = table.Number("upper_hardening_N", NonNegative());
+  params.upper_hardening_rate_per_m = table.Number("upper_hardening_rate_per_m", NonNegative());
+  params.lower_hardening_N = table.Number("lower_hardening_N", NonNegative());
+  params.lower_hardening_rate_per_m = table.Number("lower_hardening_rate_per_m", NonNegative());
+  return params;
+}
+
+// The ribbon the switch selects must be there; the other one, if given, is checked too, so
+// that `--set tdb.X.four_dof.ribbon=...` can switch between two complete descriptions.
+FourDofParams ReadFourDof(const TableReader& tdb, const GravityParams& gravity) {
+  const TableReader table = tdb.Table("four_dof");
+  table.AllowOnly({"inner_race_mass_kg", "outer_race_mass_kg", "ribbon_clearance_m", "bearing_law",
+                   "ribbon", "inner_contact", "housing_contact", "bearing", "kelvin_voigt",
+                   "dahl"});
+  FourDofParams params;
+  params.inner_race_mass_kg = table.Number("inner_race_mass_kg", Positive());
+  params.outer_race_mass_kg = table.Number("outer_race_mass_kg", Positive());
+  params.ribbon_clearance_m = table.Number("ribbon_clearance_m", NonNegative());
+  params.gravity_y_m_s2 = gravity.enabled ? -gravity.acceleration_m_s2 : 0.0;
+  params.inner_contact = ReadHuntCrossley(table, "inner_contact");
+  params.housing_contact = ReadHuntCrossley(table, "housing_contact");
+  params.bearing = ReadBallBearing(table);
+  params.bearing.law = table.Choice("bearing_law", {"hertz_linearised", "hertz"}) == "hertz"
+                           ? BearingLaw::kHertz
+                           : BearingLaw::kHertzLinearised;
+  params.ribbon = table.Choice("ribbon", {"kelvin_voigt", "dahl"}) == "dahl"
+                      ? RibbonLaw::kDahl
+                      : RibbonLaw::kKelvinVoigt;
+  if (params.ribbon == RibbonLaw::kKelvinVoigt) {
+    params.kelvin_voigt = ReadKelvinVoigt(table.Table("kelvin_voigt"));
+    if (const auto dahl = table.OptionalTable("dahl")) params.dahl = ReadDahl(*dahl);
+  } else {
+    params.dahl = ReadDahl(table.Table("dahl"));
+    if (const auto kv = table.OptionalTable("kelvin_voigt"))
+      params.kelvin_voigt = ReadKelvinVoigt(*kv);
+  }
   return params;
 }
 
@@ -63,18 +150,26 @@ MisalignmentParams ReadMisalignment(const TableReader& tdb) {
   return params;
 }
 
-TdbParams ReadTdb(const std::string& name, const TableReader& table, const AxialRange& position) {
+TdbParams ReadTdb(const std::string& name, const TableReader& table, const AxialRange& position,
+                  const GravityParams& gravity) {
   table.AllowOnly({"position_m", "journal_radius_m", "clearance_m", "model", "contact_law",
-                   "friction", "spin", "misalignment"});
+                   "friction", "spin", "misalignment", "four_dof"});
   TdbParams tdb;
   tdb.name = name;
   tdb.position_m = ReadAxialPosition(table, position);
   tdb.journal_radius_m = table.Number("journal_radius_m", Positive());
   tdb.clearance_m = table.Number("clearance_m", Positive());
-  // One model so far; the key exists so that configs stay valid when more are added.
-  table.Choice("model", {"contact_law"}, "contact_law");
-  tdb.model = TdbModelKind::kContactLaw;
-  tdb.contact_law = ReadContactLaw(table);
+  // The selected model's table is required; the other, if given, is checked too, so that
+  // `--set tdb.X.model=...` can switch between two complete descriptions.
+  tdb.model = table.Choice("model", {"contact_law", "four_dof"}, "contact_law") == "four_dof"
+                  ? TdbModelKind::kFourDof
+                  : TdbModelKind::kContactLaw;
+  if (tdb.model == TdbModelKind::kContactLaw || table.Has("contact_law")) {
+    tdb.contact_law = ReadContactLaw(table);
+  }
+  if (tdb.model == TdbModelKind::kFourDof || table.Has("four_dof")) {
+    tdb.four_dof = ReadFourDof(table, gravity);
+  }
   tdb.friction = ReadFriction(table);
   tdb.spin = ReadSpin(table);
   tdb.misalignment = ReadMisalignment(table);
@@ -86,8 +181,10 @@ TdbParams ReadTdb(const std::string& name, const TableReader& table, const Axial
 std::vector<TdbParams> ReadTdbs(const TableReader& root, const AxialRange& position) {
   const auto tables = root.NamedTables("tdb");
   root.CheckCount("tdb", tables.size(), kMaxTdbs, "touchdown bearings");
+  // The races of 4-DOF TDBs carry their weight.
+  const GravityParams gravity = ReadGravity(root);
   std::vector<TdbParams> tdbs;
-  for (const auto& [name, table] : tables) tdbs.push_back(ReadTdb(name, table, position));
+  for (const auto& [name, table] : tables) tdbs.push_back(ReadTdb(name, table, position, gravity));
   return tdbs;
 }
 

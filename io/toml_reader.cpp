@@ -106,10 +106,13 @@ NumberRule NonNegativeBelow(double upper, std::string what) {
 
 std::string UnitOfKey(std::string_view key) {
   // Longest suffix first, so "_N_s_per_m" wins over "_s_per_m" and "_m".
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 16> kUnits = {{
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 20> kUnits = {{
+      {"_N_per_m1_5", "N/m^1.5"},
+      {"_N_per_m_n", "N/m^n"},
       {"_N_s_per_m", "N s/m"},
       {"_s_per_m", "s/m"},
       {"_N_per_m", "N/m"},
+      {"_per_m", "1/m"},
       {"_N_per_A", "N/A"},
       {"_kg_m3", "kg/m^3"},
       {"_kg_m2", "kg m^2"},
@@ -121,6 +124,7 @@ std::string UnitOfKey(std::string_view key) {
       {"_kg", "kg"},
       {"_Pa", "Pa"},
       {"_A", "A"},
+      {"_N", "N"},
       {"_m", "m"},
       {"_s", "s"},
   }};

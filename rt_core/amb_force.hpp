@@ -1,6 +1,7 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "rt_core/amb_params.hpp"
@@ -37,22 +38,35 @@ inline double LimitedCurrent(const AmbParams& a, double current_A) noexcept {
   return std::clamp(current_A, -limit, limit);
 }
 
+/// Largest force one coil of the axis can pull with when the iron saturates:
+/// F = B^2 A cos(alpha) / mu0 at B = B_sat (the law below with mu0 N I / (2 g) = B_sat);
+/// +infinity with saturation off.
+inline double SaturatedCoilForce(const ElectromagnetParams& e) noexcept {
+  if (!e.saturation_enabled) return std::numeric_limits<double>::infinity();
+  const double b = e.saturation_flux_density_T;
+  return b * b * e.pole_area_m2 * std::cos(e.pole_half_angle_rad) / kVacuumPermeability_H_per_m;
+}
+
 /// Force of one electromagnet axis (N, along +u) for control current i and rotor displacement u
-/// (seed 003's law). The displacement is held short of the pole faces: the TDBs stop the rotor
-/// long before, and the law is singular there.
+/// (seed 003's law, Eq. (2)), each coil's pull capped at `max_coil_force_N` (saturation).
+/// The displacement is held short of the pole faces: the TDBs stop the rotor long before, and
+/// the law is singular there.
 /// The same with the constant k precomputed (the step's form: no cos per call).
-inline double ElectromagnetForce(double k, double nominal_gap_m, double bias_current_A,
-                                 double current_A, double displacement_m) noexcept {
+inline double ElectromagnetForce(
+    double k, double nominal_gap_m, double bias_current_A, double current_A, double displacement_m,
+    double max_coil_force_N = std::numeric_limits<double>::infinity()) noexcept {
   const double g0 = nominal_gap_m;
   const double u = std::clamp(displacement_m, -0.95 * g0, 0.95 * g0);
   const double plus = bias_current_A + current_A;
   const double minus = bias_current_A - current_A;
-  return k * (plus * plus / ((g0 - u) * (g0 - u)) - minus * minus / ((g0 + u) * (g0 + u)));
+  const double pull_plus = std::min(k * (plus * plus / ((g0 - u) * (g0 - u))), max_coil_force_N);
+  const double pull_minus = std::min(k * (minus * minus / ((g0 + u) * (g0 + u))), max_coil_force_N);
+  return pull_plus - pull_minus;
 }
 inline double ElectromagnetForce(const ElectromagnetParams& e, double current_A,
                                  double displacement_m) noexcept {
   return ElectromagnetForce(ElectromagnetConstant(e), e.nominal_gap_m, e.bias_current_A, current_A,
-                            displacement_m);
+                            displacement_m, SaturatedCoilForce(e));
 }
 
 /// Control current that makes the static force f at the centre (feedforward for gravity).

@@ -23,6 +23,10 @@ struct ElectromagnetParams {
   double nominal_gap_m = 0.0;                       ///< g0, air gap with the rotor centred
   double bias_current_A = 0.0;                      ///< I0
   double pole_half_angle_rad = 0.3926990816987241;  ///< alpha: 22.5 deg for an 8-pole stator
+  /// Magnetic saturation of the iron: the air-gap flux density B = mu0 N I / (2 g) of a coil
+  /// cannot exceed saturation_flux_density_T, which caps the coil's force (an effect switch).
+  bool saturation_enabled = false;
+  double saturation_flux_density_T = 0.0;
 };
 
 /// After power loss the coil currents decay as exp(-t/tau) (the coils' L/R and the

@@ -98,7 +98,8 @@ void SplitByPlane(Model* m) {
     p.ambs.push_back({SplitStation(m->amb_shapes[a], h), amb,
                       biased ? m->amb_bias_force_N[a][0] : 0.0,
                       biased ? m->amb_bias_force_N[a][1] : 0.0, ControlCurrentLimit(amb),
-                      ElectromagnetConstant(amb.electromagnet)});
+                      ElectromagnetConstant(amb.electromagnet),
+                      SaturatedCoilForce(amb.electromagnet)});
   }
   p.gyroscopic_xy = Block(m->rotor.gyroscopic, 0, h, h);
   p.gyroscopic_yx = Block(m->rotor.gyroscopic, h, 0, h);

@@ -67,9 +67,11 @@ void PlaneDerivative(const Model& m, const StateVector& y, const ControlInput& i
         const ElectromagnetParams& e = amb.params.electromagnet;
         const double lim = amb.current_limit_A;
         f[0] = ElectromagnetForce(amb.electromagnet_constant, e.nominal_gap_m, e.bias_current_A,
-                                  std::clamp(drive.current_A[0], -lim, lim), ux);
+                                  std::clamp(drive.current_A[0], -lim, lim), ux,
+                                  amb.max_coil_force_N);
         f[1] = ElectromagnetForce(amb.electromagnet_constant, e.nominal_gap_m, e.bias_current_A,
-                                  std::clamp(drive.current_A[1], -lim, lim), uy);
+                                  std::clamp(drive.current_A[1], -lim, lim), uy,
+                                  amb.max_coil_force_N);
         break;
       }
     }

@@ -37,6 +37,7 @@ struct PlaneAmb {
   double bias_y_N = 0.0;
   double current_limit_A = 0.0;         ///< ControlCurrentLimit
   double electromagnet_constant = 0.0;  ///< k of the electromagnet law (N m^2/A^2)
+  double max_coil_force_N = 0.0;        ///< SaturatedCoilForce (+inf without saturation)
 };
 
 /// The reduced equations split by bending plane, which is what the step integrates. Shaft,

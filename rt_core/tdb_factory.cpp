@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "rt_core/contact_law_tdb.hpp"
+#include "rt_core/four_dof_tdb.hpp"
 
 namespace ambdrop {
 
@@ -10,6 +11,8 @@ std::unique_ptr<TouchdownBearing> MakeTouchdownBearing(const TdbParams& params) 
   switch (params.model) {
     case TdbModelKind::kContactLaw:
       return std::make_unique<ContactLawTdb>(params);
+    case TdbModelKind::kFourDof:
+      return std::make_unique<FourDofTdb>(params);
   }
   throw std::invalid_argument("tdb '" + params.name + "': unknown model");
 }

@@ -1,6 +1,8 @@
 #pragma once
 #include <string>
 
+#include "rt_core/four_dof_params.hpp"
+
 namespace ambdrop {
 
 /// Contact-law TDB, Jarroux 2019 Eq. (12): ribbon (keq, ceq) until crushed by urd, then the ball
@@ -44,7 +46,10 @@ struct MisalignmentParams {
   double y_m = 0.0;
 };
 
-enum class TdbModelKind { kContactLaw };
+enum class TdbModelKind {
+  kContactLaw,  ///< model #1, Eq. (12)
+  kFourDof,     ///< models #2 (Kelvin-Voigt ribbon) and #3 (Dahl ribbon), Sec. 4.1
+};
 
 struct TdbParams {
   std::string name;
@@ -53,6 +58,7 @@ struct TdbParams {
   double clearance_m = 0.0;       ///< radial clearance rotor / inner race
   TdbModelKind model = TdbModelKind::kContactLaw;
   ContactLawParams contact_law;
+  FourDofParams four_dof;
   FrictionParams friction;
   TdbSpinParams spin;
   MisalignmentParams misalignment;

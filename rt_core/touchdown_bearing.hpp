@@ -21,6 +21,7 @@ struct TdbForce {
   double tangential_force_N = 0.0;   ///< friction force on the inner race, along the spin sense
   double penetration_m = 0.0;        ///< journal excursion beyond the clearance (< 0: free)
   double tdb_spin_rad_s = 0.0;       ///< inner-race speed
+  double support_force_N = 0.0;      ///< force passed to the housing (the rig's load cells)
 };
 
 /// A touchdown-bearing model: its own internal states (race speeds, race positions, ribbon

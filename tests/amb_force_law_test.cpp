@@ -39,6 +39,33 @@ TEST(Electromagnet, LinearisedGainsAreTheDerivativesAtTheCentre) {
   EXPECT_GT(ks, 0.0);  // open loop the bearing pulls the rotor off centre
 }
 
+TEST(Electromagnet, SaturationCapsEachCoilsPullAtTheSaturatedFluxDensity) {
+  ElectromagnetParams e = Seed003();
+  const double k = ElectromagnetConstant(e);
+  e.saturation_enabled = true;
+  e.saturation_flux_density_T = 1.2;
+  // B = mu0 N I / (2 g): 130 turns, 2 A, 0.25 mm give 0.65 T, below 1.2 T: the law unchanged.
+  const double b0 = 4e-7 * std::numbers::pi * 130.0 * 2.0 / (2 * 0.25e-3);
+  ASSERT_LT(b0, 1.2);
+  EXPECT_EQ(ElectromagnetForce(e, 0.5, 0.05e-3),
+            ElectromagnetForce(k, e.nominal_gap_m, e.bias_current_A, 0.5, 0.05e-3));
+  // F_sat = B_sat^2 A cos(alpha) / mu0, by hand.
+  const double f_sat =
+      1.2 * 1.2 * 1.96e-4 * std::cos(std::numbers::pi / 8) / (4e-7 * std::numbers::pi);
+  EXPECT_NEAR(SaturatedCoilForce(e) / f_sat, 1.0, 1e-9);
+  // Near the upper pole with the full control current, the upper coil saturates: the force is
+  // F_sat minus the lower coil's unsaturated pull.
+  const double i = 2.0, u = 0.2e-3;
+  ASSERT_GT(4e-7 * std::numbers::pi * 130.0 * (2.0 + i) / (2 * (0.25e-3 - u)), 1.2);
+  EXPECT_NEAR(ElectromagnetForce(e, i, u), f_sat - 0.0, 1e-9 * f_sat);  // lower coil: I0 - i = 0
+  EXPECT_LT(ElectromagnetForce(e, i, u),
+            ElectromagnetForce(k, e.nominal_gap_m, e.bias_current_A, i, u) / 10.0);
+  // The cap is the saturation, nothing more: continuous where B crosses B_sat.
+  const double i_sat = 1.2 * 2 * (0.25e-3 - u) / (4e-7 * std::numbers::pi * 130.0) - 2.0;
+  EXPECT_NEAR(ElectromagnetForce(e, i_sat + 1e-9, u), ElectromagnetForce(e, i_sat - 1e-9, u),
+              1e-4 * f_sat);
+}
+
 TEST(Electromagnet, AmplifierLimitsTheCurrent) {
   AmbParams a;
   a.law = AmbForceLaw::kElectromagnet;

@@ -793,7 +793,8 @@ std::vector<RuleCase> TdbCases() {
       {"TdbUnknownKey", Full("clearance_m = 2e-4", "clearence_m = 2e-4"), "clearence_m",
        "tdb.de.clearence_m",
        "unknown key 'tdb.de.clearence_m' (allowed here: position_m, journal_radius_m, "
-       "clearance_m, model, contact_law, friction, spin, misalignment)"},
+       "clearance_m, model, contact_law, friction, spin, misalignment, "
+       "four_dof)"},
       {"TdbContactLawMissing",
        Full("[tdb.de.contact_law]\nbearing_stiffness_N_per_m = 1e8\nbearing_damping_N_s_per_m = "
             "100\nribbon_stiffness_N_per_m = 5e6\nribbon_damping_N_s_per_m = 50\n"

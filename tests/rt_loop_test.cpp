@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <fstream>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -827,6 +828,33 @@ TEST(LinuxRtSystem, EnforcedImpossibleRequestThrows) {
       EXPECT_NE(std::string(e.what()).find("EINVAL"), std::string::npos) << e.what();
     }
   });
+}
+
+// ---------------------------------------------------------------------------------------------
+// RT throttling
+
+TEST(RtThrottling, WarnsWhenTheSpinTakesHalfTheAllowedShare) {
+  const RtThrottling linux_default{950'000, 1'000'000};
+  constexpr std::int64_t kPeriod = 50'000;  // 20 kHz
+  EXPECT_EQ(RtThrottlingWarning(0, kPeriod, linux_default), "");
+  EXPECT_EQ(RtThrottlingWarning(10'000, kPeriod, linux_default), "");  // 20 % of the period
+  EXPECT_EQ(RtThrottlingWarning(23'000, kPeriod, linux_default), "");  // 46 % < 47.5 %
+  const std::string w = RtThrottlingWarning(40'000, kPeriod, linux_default);
+  EXPECT_NE(w.find("40.0 us of each 50.0 us"), std::string::npos) << w;
+  EXPECT_NE(w.find("~50 ms every 1000 ms"), std::string::npos) << w;
+  EXPECT_NE(w.find("sched_rt_runtime_us = 950000"), std::string::npos) << w;
+  // Throttling off (-1): no risk whatever the spin.
+  EXPECT_EQ(RtThrottlingWarning(49'000, kPeriod, RtThrottling{-1, 1'000'000}), "");
+  // A tighter budget warns earlier.
+  EXPECT_NE(RtThrottlingWarning(15'000, kPeriod, RtThrottling{500'000, 1'000'000}), "");
+}
+
+TEST(RtThrottling, ReadsTheKernelSettings) {
+  const std::optional<RtThrottling> t = ReadRtThrottling();
+  if (!t) GTEST_SKIP() << "/proc/sys/kernel/sched_rt_* not readable here";
+  EXPECT_GT(t->period_us, 0);
+  EXPECT_TRUE(t->runtime_us == -1 || (t->runtime_us >= 0 && t->runtime_us <= t->period_us))
+      << t->runtime_us;
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "tools/exit_codes.hpp"
 #include "tools/hil_command.hpp"
 #include "tools/modes_command.hpp"
+#include "tools/replay_command.hpp"
 #include "tools/sim_command.hpp"
 
 #ifndef AMBDROP_VERSION
@@ -38,12 +39,43 @@ int main(int argc, char** argv) {
   ambdrop::SimOptions sim;
   CLI::App* sim_command = app.add_subcommand(
       "sim", "Simulate a rotor drop offline; write timeseries.csv and summary.json");
-  sim_command->add_option("CONFIG", sim.config_path, "TOML config file")->required();
+  CLI::Option* sim_config = sim_command->add_option("CONFIG", sim.config_path, "TOML config file");
+  CLI::Option* sim_scenario =
+      sim_command
+          ->add_option("--scenario", sim.scenario_path,
+                       "Run a scripted shutdown: a scenario file (a rig config with a [scenario] "
+                       "table; configs/scenarios/); exits 4 if an expected outcome fails")
+          ->type_name("FILE");
+  sim_config->excludes(sim_scenario);
+  sim_command->callback([sim_config, sim_scenario] {
+    if (sim_config->count() == 0 && sim_scenario->count() == 0) {
+      throw CLI::RequiredError("CONFIG or --scenario");
+    }
+  });
   sim_command->add_option("--out", sim.out_dir, "Output directory")
       ->type_name("DIR")
       ->capture_default_str();
   AddSetOption(sim_command, &sim.overrides);
   sim_command->add_flag("--quiet,-q", sim.quiet, "No summary on stdout and no progress bar");
+  sim_command
+      ->add_option("--record", sim.record_path,
+                   "Record the run (inputs, power events, sensor samples, state) into an LCM "
+                   "event log for `ambdrop replay`")
+      ->type_name("FILE.lcm");
+
+  ambdrop::ReplayOptions replay;
+  CLI::App* replay_command = app.add_subcommand(
+      "replay", "Re-run a recorded run offline from its inputs and compare with the record");
+  replay_command->add_option("RECORD", replay.record_path, "LCM event log from --record")
+      ->required();
+  replay_command->add_option("--config", replay.config_path,
+                             "Replay with this config instead of the recorded one (reports the "
+                             "differences)");
+  replay_command->add_option("--out", replay.out_dir, "Output directory")
+      ->type_name("DIR")
+      ->capture_default_str();
+  AddSetOption(replay_command, &replay.overrides);
+  replay_command->add_flag("--quiet,-q", replay.quiet, "No report on stdout");
 
   ambdrop::ModesOptions modes;
   double speed_rpm = 0.0;
@@ -75,13 +107,39 @@ int main(int argc, char** argv) {
                           "[trigger] schedule)");
   hil_command->add_flag("--virtual-clock", hil.virtual_clock,
                         "Run on simulated time, as fast as possible (offline, tests)");
+  // The real-time flags override the config's [realtime] table; the callbacks note which were
+  // given (an explicit --rt-priority 0 overrides a config priority too).
   hil_command
-      ->add_option("--rt-priority", hil.rt_priority,
-                   "SCHED_FIFO priority of the loop thread (0: normal scheduling)")
+      ->add_option_function<int>(
+          "--rt-priority",
+          [&hil](int priority) {
+            hil.rt_priority = priority;
+            hil.rt_priority_given = true;
+          },
+          "SCHED_FIFO priority of the loop thread (0: normal scheduling; default: "
+          "realtime.priority)")
+      ->type_name("P")
       ->check(CLI::Range(0, 99));
-  hil_command->add_option("--cpu", hil.cpu, "Pin the loop thread to this CPU");
+  hil_command
+      ->add_option_function<int>(
+          "--cpu",
+          [&hil](int cpu) {
+            hil.cpu = cpu;
+            hil.cpu_given = true;
+          },
+          "Pin the loop thread to this CPU (-1: any; default: realtime.cpu)")
+      ->type_name("N")
+      ->check(CLI::Range(-1, 1023));
+  hil_command
+      ->add_option("--spin-us", hil.spin_us,
+                   "Poll the clock for the last US microseconds before each deadline instead of "
+                   "sleeping (default: realtime.spin_s); with SCHED_FIFO a spin near the period "
+                   "trips the kernel's RT throttling")
+      ->type_name("US")
+      ->check(CLI::Range(0.0, 10000.0));
   hil_command->add_flag("--enforce-rt", hil.enforce_rt,
-                        "Fail if real-time scheduling or memory locking is refused");
+                        "Fail if real-time scheduling, CPU pinning or memory locking is refused "
+                        "(also realtime.enforce)");
   hil_command
       ->add_option("--watchdog-s", hil.watchdog_timeout_s,
                    "Controller silence that trips the watchdog (s)")
@@ -91,6 +149,11 @@ int main(int argc, char** argv) {
   hil_command->add_option("--out", hil.out_dir, "Output directory")->capture_default_str();
   AddSetOption(hil_command, &hil.overrides);
   hil_command->add_flag("--quiet,-q", hil.quiet, "No summary on stdout");
+  hil_command
+      ->add_option("--record", hil.record_path,
+                   "Record the run (currents in with their receive time, power events, sensor "
+                   "samples out, state) into an LCM event log for `ambdrop replay`")
+      ->type_name("FILE.lcm");
 
   try {
     app.parse(argc, argv);
@@ -111,6 +174,7 @@ int main(int argc, char** argv) {
   try {
     if (sim_command->parsed()) return ambdrop::RunSimCommand(sim);
     if (hil_command->parsed()) return ambdrop::RunHilCommand(hil);
+    if (replay_command->parsed()) return ambdrop::RunReplayCommand(replay);
     if (modes_command->parsed()) {
       if (speed_option->count() > 0) modes.speed_rpm = speed_rpm;
       return ambdrop::RunModesCommand(modes);

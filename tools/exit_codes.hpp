@@ -8,7 +8,8 @@ enum ExitCode : int {
   kExitError = 1,      ///< I/O failure or an unexpected internal error
   kExitConfig = 2,     ///< the config (or a --set override) is invalid, or no model can be built
   kExitRunFailed = 3,  ///< the simulation diverged; partial outputs were written
-  kExitUsage = 64,     ///< bad command line (EX_USAGE of sysexits.h)
+  kExitExpectationFailed = 4,  ///< a scenario ran, and an outcome it expects did not happen
+  kExitUsage = 64,             ///< bad command line (EX_USAGE of sysexits.h)
 };
 
 }  // namespace ambdrop

@@ -11,7 +11,6 @@
 #include <thread>
 
 #include "controller_if/hil_session.hpp"
-#include "controller_if/internal_controller_link.hpp"
 #include "controller_if/periodic_loop.hpp"
 #include "controller_if/rt_clock.hpp"
 #include "controller_if/rt_system.hpp"
@@ -19,7 +18,8 @@
 #include "io/json_writer.hpp"
 #include "io/timeseries_csv.hpp"
 #include "tools/exit_codes.hpp"
-#include "tools/lcm_controller_link.hpp"
+#include "tools/hil_links.hpp"
+#include "tools/record/run_record_writer.hpp"
 #include "tools/run_summary.hpp"
 #include "tools/tdb_summary_json.hpp"
 
@@ -70,45 +70,21 @@ int RunHilCommand(const HilCommandOptions& options) {
     return kExitConfig;
   }
 
-  std::unique_ptr<LcmEndpoint> lcm;
-  LcmControllerLink* lcm_trigger = nullptr;
-  std::unique_ptr<ControllerLink> link;
-  std::vector<std::unique_ptr<TriggerSource>> triggers;
+  // The controller link and trigger sources (tools/hil_links.hpp).
+  HilLinks links;
   std::int64_t substeps = 0;
   try {
     substeps = ControllerSubsteps(*model);
-    const double period_s = substeps * model->params.simulation.step_s;
-    if (options.controller == "internal") {
-      link = std::make_unique<InternalControllerLink>(*model, period_s);
-    } else if (options.controller == "lcm" || options.controller.rfind("lcm:", 0) == 0) {
-      LcmEndpointOptions lcm_options;
-      if (options.controller.size() > 4) lcm_options.url = options.controller.substr(4);
-      lcm = std::make_unique<LcmEndpoint>(lcm_options);
-      lcm->Start();
-      auto lcm_link = std::make_unique<LcmControllerLink>(
-          lcm.get(), static_cast<int>(model->params.sensors.size()));
-      lcm_trigger = lcm_link.get();
-      link = std::move(lcm_link);
-    } else {
-      throw std::invalid_argument("--controller " + options.controller +
-                                  ": expected internal or lcm[:URL] (can: see the README)");
-    }
-    if (options.trigger.empty()) {
-      if (model->params.trigger.enabled) {
-        triggers.push_back(std::make_unique<ScheduledTrigger>(
-            model->params.trigger.time_s, ScheduledFailure(*model),
-            model->params.trigger.restore_time_s, ScheduledRestore(*model)));
-      }
-    } else if (options.trigger == "lcm") {
-      if (lcm_trigger == nullptr)
-        throw std::invalid_argument("--trigger lcm needs --controller lcm");
-    } else if (options.trigger.rfind("at:", 0) == 0) {
-      const double at = std::stod(options.trigger.substr(3));
-      triggers.push_back(std::make_unique<ScheduledTrigger>(at, ScheduledFailure(*model)));
-    } else {
-      throw std::invalid_argument("--trigger " + options.trigger +
-                                  ": expected at:SECONDS or lcm (gpio and can: see the README)");
-    }
+    links = MakeHilLinks(config, *model, options.controller, options.trigger);
+  } catch (const ConfigError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitConfig;
+  } catch (const CanBusError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitError;
+  } catch (const GpioError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitError;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitUsage;
@@ -128,11 +104,34 @@ int RunHilCommand(const HilCommandOptions& options) {
   TimeseriesCsvWriter csv(out_dir / "timeseries.csv", *model);
   RunSummary summary(model->params);
 
-  std::vector<TriggerSource*> trigger_ptrs;
-  for (auto& t : triggers) trigger_ptrs.push_back(t.get());
-  if (lcm_trigger != nullptr) trigger_ptrs.push_back(lcm_trigger);  // LCM trigger messages
+  std::unique_ptr<RunRecordWriter> recorder;
+  if (!options.record_path.empty()) {
+    RecordHeaderInfo header;
+    header.source = "hil";
+    header.controller = options.controller;
+    header.config_toml = config.effective_toml;
+    header.sensor_every_steps = ControllerSubsteps(*model);
+    header.output_every_steps = std::max<std::int64_t>(
+        1,
+        std::llround(model->params.simulation.output_interval_s / model->params.simulation.step_s));
+    header.total_steps = model->total_steps;
+    RecordWriterOptions record_options;
+    // Live: wall-clock stamps, and a full ring drops (counted in the footer) rather than
+    // stalling the loop. Virtual clock: simulated time, and the run waits for the writer.
+    record_options.wall_clock = !options.virtual_clock;
+    record_options.wait_when_full = options.virtual_clock;
+    try {
+      recorder =
+          std::make_unique<RunRecordWriter>(options.record_path, *model, header, record_options);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: --record: {}\n", e.what());
+      return kExitError;
+    }
+    hil.recorder = recorder.get();
+  }
+
   auto outputs = std::make_unique<HilSession::OutputRing>();
-  HilSession session(*model, link.get(), trigger_ptrs, hil, outputs.get());
+  HilSession session(*model, links.link.get(), links.triggers, hil, outputs.get());
 
   // The writer drains observations off the real-time thread.
   std::atomic<bool> loop_done{false};
@@ -157,34 +156,62 @@ int RunHilCommand(const HilCommandOptions& options) {
   LoopResult result;
   std::optional<PeriodicLoop> loop;
   RtGrant grant;
+  // Real-time settings: the config's [realtime] table, the command line on top. A monotonic run
+  // always asks for 1 ns timer slack (the default 50 us slack alone would make every wake-up
+  // late by most of a 20 kHz period) and mlockall; refusals are warnings unless enforced.
+  RtRequest rt_request;
+  rt_request.priority = options.rt_priority_given ? options.rt_priority : config.realtime.priority;
+  rt_request.cpu = options.cpu_given ? options.cpu : config.realtime.cpu;
+  rt_request.lock_memory = true;
+  rt_request.enforce = options.enforce_rt || config.realtime.enforce;
+  rt_request.timer_slack_ns = 1;
+  const std::int64_t spin_ns = options.spin_us >= 0.0 ? std::llround(options.spin_us * 1e3)
+                                                      : std::llround(config.realtime.spin_s * 1e9);
+  const std::int64_t period_ns = std::llround(substeps * model->params.simulation.step_s * 1e9);
+  std::string throttling_warning;  // advice, not a refusal: never an error
   std::thread rt([&] {
     try {
-      if (!options.virtual_clock && (options.rt_priority > 0 || options.cpu >= 0)) {
+      if (!options.virtual_clock) {
         LinuxRtSystem system;
-        grant = RequestRealtime(
-            system, RtRequest{options.rt_priority, options.cpu, true, options.enforce_rt});
+        grant = RequestRealtime(system, rt_request);
+        const auto throttling = ReadRtThrottling();
+        if (grant.fifo && throttling) {
+          throttling_warning = RtThrottlingWarning(spin_ns, period_ns, *throttling);
+        }
       }
     } catch (const std::exception& e) {
       grant.warnings.push_back(std::string("fatal: ") + e.what());
       g_stop.store(true);
     }
-    MonotonicClock monotonic;
+    MonotonicClock monotonic(spin_ns);
     VirtualClock virtual_clock;
     Clock* clock = options.virtual_clock ? static_cast<Clock*>(&virtual_clock) : &monotonic;
-    loop.emplace(clock, std::llround(substeps * model->params.simulation.step_s * 1e9));
+    loop.emplace(clock, period_ns);
     session.Start(clock->Now());
     LoopRunOptions run;
     run.stop = &g_stop;
-    result = loop->Run([&](const LoopTick& tick) { return session.Period(tick.wake_ns); }, run);
+    // Periods the loop skipped after an overrun still advance the physics (HilSession::Period),
+    // so simulated time keeps up with wall time.
+    result = loop->Run(
+        [&](const LoopTick& tick) { return session.Period(tick.wake_ns, tick.missed_before); },
+        run);
   });
   rt.join();
-  if (lcm) lcm->Stop();
+  links.Stop();
   loop_done.store(true);
   writer.join();
   csv.Close();
+  if (recorder) {
+    try {
+      recorder->Finish(StopName(session.stop()), session.state().step_index);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: --record: {}\n", e.what());
+    }
+  }
 
   for (const std::string& w : grant.warnings) fmt::print(stderr, "warning: {}\n", w);
-  if (options.enforce_rt && !grant.complete()) return kExitError;
+  if (!throttling_warning.empty()) fmt::print(stderr, "warning: {}\n", throttling_warning);
+  if (rt_request.enforce && !grant.complete()) return kExitError;
 
   JsonWriter json;
   json.BeginObject();
@@ -196,11 +223,21 @@ int RunHilCommand(const HilCommandOptions& options) {
   json.Key("periods").Integer(result.periods);
   json.Key("overruns").Integer(result.overruns);
   json.Key("missed_periods").Integer(result.missed_periods);
+  json.Key("catch_up_periods").Integer(session.counters().catch_up_periods);
+  json.Key("spin_us").Number(static_cast<double>(spin_ns) / 1e3);
   json.Key("currents_received").Integer(session.counters().currents_received);
   json.Key("sensor_samples_sent").Integer(session.counters().sensor_samples_sent);
   json.Key("power_events").Integer(session.counters().power_events);
   json.Key("watchdog_silence_episodes").Integer(session.watchdog().silence_episodes());
   json.Key("observations_dropped").Integer(session.counters().observations_dropped);
+  links.WriteSummary(json);  // CAN and GPIO counters, when used
+  if (recorder) {
+    json.Key("record").BeginObject();
+    json.Key("path").String(options.record_path);
+    json.Key("events_written").Integer(recorder->events_written());
+    json.Key("events_dropped").Integer(recorder->dropped());
+    json.EndObject();
+  }
   WriteStats(json, "wakeup_lateness", loop->lateness());
   WriteStats(json, "compute_per_period", loop->compute());
   WriteTdbSummaries(json, summary);

@@ -17,6 +17,11 @@ struct HilCommandOptions {
   double watchdog_timeout_s = 5e-3;
   std::string silence_action = "hold";  ///< hold | zero | stop
   bool quiet = false;
+  std::string record_path;  ///< "": no record; else an LCM event log for `ambdrop replay`
+  // The command line over the config's [realtime] table: a flag given overrides its key.
+  double spin_us = -1.0;  ///< --spin-us: poll the clock before each deadline (us); < 0: config
+  bool rt_priority_given = false;  ///< --rt-priority was given (it may be 0: SCHED_OTHER)
+  bool cpu_given = false;          ///< --cpu was given
 };
 
 /// `ambdrop hil`: runs the emulator against a controller in real time (or on a virtual clock):

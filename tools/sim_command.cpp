@@ -8,12 +8,14 @@
 #include <exception>
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
+#include "controller_if/hil_session.hpp"
 #include "controller_if/offline_run.hpp"
 #include "io/config_loader.hpp"
 #include "io/json_writer.hpp"
@@ -21,7 +23,9 @@
 #include "rt_core/model.hpp"
 #include "tools/exit_codes.hpp"
 #include "tools/progress_bar.hpp"
+#include "tools/record/run_record_writer.hpp"
 #include "tools/run_summary.hpp"
+#include "tools/scenario_command.hpp"
 #include "tools/tdb_summary_json.hpp"
 
 namespace ambdrop {
@@ -112,6 +116,7 @@ void PrintSummaryTable(const RunStatistics& run, const RunSummary& summary, cons
 }  // namespace
 
 int RunSimCommand(const SimOptions& options) {
+  if (!options.scenario_path.empty()) return RunScenarioCommand(options);
   LoadedConfig config;
   try {
     config = LoadConfig(options.config_path, options.overrides);
@@ -143,6 +148,26 @@ int RunSimCommand(const SimOptions& options) {
     return kExitError;
   }
 
+  std::unique_ptr<RunRecordWriter> recorder;
+  if (!options.record_path.empty()) {
+    const bool internal = model->params.controller.kind == ControllerKind::kInternalPid;
+    RecordHeaderInfo header;
+    header.source = "sim";
+    header.controller = internal ? "internal" : "profile";
+    header.config_toml = config.effective_toml;
+    header.sensor_every_steps = internal ? ControllerSubsteps(*model) : 0;
+    header.output_every_steps = std::max<std::int64_t>(
+        1,
+        std::llround(model->params.simulation.output_interval_s / model->params.simulation.step_s));
+    header.total_steps = model->total_steps;
+    try {
+      recorder = std::make_unique<RunRecordWriter>(options.record_path, *model, header);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: --record: {}\n", e.what());
+      return kExitError;
+    }
+  }
+
   RunSummary summary(model->params);
   ProgressBar progress(!options.quiet && ProgressBar::IsTerminal(2));
   // RunOffline cannot be stopped from a callback, so an output error is held until it returns
@@ -160,7 +185,7 @@ int RunSimCommand(const SimOptions& options) {
   const auto on_progress = [&](double fraction) { progress.Update(fraction); };
 
   const auto start = std::chrono::steady_clock::now();
-  const OfflineRunResult result = RunOffline(*model, on_output, on_progress);
+  const OfflineRunResult result = RunOffline(*model, on_output, on_progress, recorder.get());
   const auto stop = std::chrono::steady_clock::now();
   progress.Finish();
 
@@ -187,6 +212,13 @@ int RunSimCommand(const SimOptions& options) {
     csv->Close();
   } catch (const std::exception& e) {
     if (output_error.empty()) output_error = e.what();
+  }
+  if (recorder) {
+    try {
+      recorder->Finish(result.status == StepStatus::kOk ? "ok" : "diverged", result.steps);
+    } catch (const std::exception& e) {
+      if (output_error.empty()) output_error = e.what();
+    }
   }
   try {
     WriteTextFile(out_dir / "summary.json", SummaryJson(run, summary));

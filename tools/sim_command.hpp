@@ -9,12 +9,15 @@ struct SimOptions {
   std::string out_dir = "out";
   std::vector<std::string> overrides;  ///< "dotted.key=value", applied in order
   bool quiet = false;                  ///< no summary on stdout, no progress bar
+  std::string record_path;             ///< "": no record; else an LCM event log of the run
+  std::string scenario_path;  ///< a scenario file (its own rig config): see scenario_command
 };
 
 /// `ambdrop sim`: loads the config, runs it offline and writes into options.out_dir
 ///   timeseries.csv         every observation, exact to the bit
 ///   summary.json           drop metrics per TDB and run statistics
 ///   effective_config.toml  the config after the overrides, to rerun or diff the case
+/// and, with record_path, a run record for `ambdrop replay`.
 /// Returns an ExitCode (exit_codes.hpp); errors are reported on stderr.
 int RunSimCommand(const SimOptions& options);
 

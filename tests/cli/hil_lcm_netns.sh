@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # End to end over LCM udpm between two processes inside a network namespace this test creates
 # (loopback only): ambdrop-controller levitates the rotor through `ambdrop hil`, the scheduled
-# trigger drops it. LCM's udpm round trip here (~60-120 us) does not fit a 20 kHz lockstep, so the
+# trigger drops it, and the drop matches the offline replay of the recorded inputs bit for bit
+# (`ambdrop replay` of the run's --record; replay exits 3 on any difference). LCM's udpm round trip here (~60-120 us) does not fit a 20 kHz lockstep, so the
 # loop runs at 2 kHz. Usage: hil_lcm_netns.sh AMBDROP_BINARY SOURCE_DIR; exit 77 = skipped.
 set -euo pipefail
 tool=$1
@@ -23,9 +24,23 @@ unshare -n bash -c "
   '$controller' '$config' ${sets[*]} --idle-exit-s 1 > '$work/controller.log' 2>&1 &
   sleep 0.5
   '$tool' hil '$config' --controller lcm ${sets[*]} --set simulation.duration_s=0.4 \
-    --rt-priority 80 --out '$work/out' --quiet
+    --rt-priority 80 --out '$work/out' --record '$work/run.lcm' --quiet
   wait
 "
+"$tool" replay "$work/run.lcm" --out "$work/replay" >"$work/replay.txt" || {
+  cat "$work/replay.txt"
+  echo "FAIL: the replay of the recorded inputs does not reproduce the live run"
+  exit 1
+}
+grep -q "identical, bit for bit" "$work/replay.txt" || {
+  cat "$work/replay.txt"
+  exit 1
+}
+cmp "$work/out/timeseries.csv" "$work/replay/timeseries.csv" || {
+  echo "FAIL: the replayed timeseries.csv differs from the live run's"
+  exit 1
+}
+cat "$work/replay.txt"
 python3 - "$work/out" <<'PY'
 import csv, json, sys
 out = sys.argv[1]

@@ -2,6 +2,9 @@
 // (the same one `ambdrop sim` uses in process) on the sensor readings ambdrop publishes over LCM
 // and answers with coil currents, so the whole HIL loop can be tried without a controller board:
 //   ambdrop-controller CONFIG --lcm URL     and     ambdrop hil CONFIG --controller lcm:URL
+//   ambdrop-controller CONFIG --can IFACE   and     ambdrop hil CONFIG --controller can:IFACE
+// Over CAN it reads the sensor frames of the config's [can] frame map and answers each complete
+// set with current frames; its PID runs at the exchange rate ([can].exchange_rate_Hz).
 #include <fmt/format.h>
 #include <lcm/lcm-cpp.hpp>
 
@@ -15,8 +18,11 @@
 #include "ambdrop_lcm/sensor_readings_t.hpp"
 #include "controller_if/hil_session.hpp"
 #include "controller_if/pid_controller.hpp"
+#include "io/can_controller_view.hpp"
 #include "io/config_loader.hpp"
+#include "io/socketcan_bus.hpp"
 #include "rt_core/model.hpp"
+#include "tools/can_pid_responder.hpp"
 
 namespace {
 
@@ -64,28 +70,79 @@ class Responder {
   std::chrono::steady_clock::time_point last_message_ = std::chrono::steady_clock::now();
 };
 
+/// The CAN variant of the loop: answers sensor frames until idle (or a signal).
+int RunOverCan(const ambdrop::LoadedConfig& config, const ambdrop::Model& model,
+               const std::string& interface, double idle_exit_s) {
+  if (!config.can) {
+    fmt::print(stderr,
+               "error: {}: --can needs a [can] table in the config (the frame map; see "
+               "configs/jarroux2019_industrial_pid_can.toml)\n",
+               config.source_path);
+    return 2;
+  }
+  const ambdrop::ControllerFrameView view(config.can->frame_map);
+  ambdrop::SocketCanOptions options;
+  options.interface = interface;
+  options.socket.fd_frames = config.can->fd;
+  options.socket.filters = view.InputFilters();
+  std::optional<ambdrop::SocketCanBus> bus;
+  try {
+    bus.emplace(options);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  }
+  ambdrop::CanPidResponder responder(&*bus, &view, model, 1.0 / config.can->exchange_rate_Hz);
+  auto last_answer = std::chrono::steady_clock::now();
+  while (!g_stop.load()) {
+    if (responder.Service(std::chrono::milliseconds(100)) > 0) {
+      last_answer = std::chrono::steady_clock::now();
+    }
+    const double idle =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - last_answer).count();
+    if (responder.counters().sensor_sets > 0 && idle > idle_exit_s) break;
+  }
+  const ambdrop::CanResponderCounters& c = responder.counters();
+  fmt::print(
+      "ambdrop-controller: answered {} sensor sets over CAN ({} frames in, {} unknown, {} "
+      "malformed; {} frames out, {} dropped)\n",
+      c.sensor_sets, c.frames_received, responder.map_counters().unknown_id,
+      responder.map_counters().malformed, c.frames_sent, c.send_drops);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"ambdrop-controller: the reference PID as an external controller over LCM"};
+  CLI::App app{"ambdrop-controller: the reference PID as an external controller over LCM or CAN"};
   std::string config_path, url = "udpm://239.255.76.67:7667?ttl=0";
   std::vector<std::string> overrides;
   double idle_exit_s = 5.0;
   app.add_option("CONFIG", config_path, "TOML config (its [controller.pid] and AMBs)")->required();
-  app.add_option("--lcm", url, "LCM URL")->capture_default_str();
+  std::string can_interface;
+  auto* lcm_option = app.add_option("--lcm", url, "LCM URL")->capture_default_str();
+  app.add_option("--can", can_interface,
+                 "SocketCAN interface (e.g. vcan0): talk CAN by the config's [can] frame map "
+                 "instead of LCM")
+      ->excludes(lcm_option);
   app.add_option("--set", overrides, "Override a config value (KEY=VALUE)")->take_all();
   app.add_option("--idle-exit-s", idle_exit_s,
                  "Exit after this long without sensor messages (once some arrived)")
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
+  std::optional<ambdrop::LoadedConfig> config;
   std::optional<ambdrop::Model> model;
   try {
-    model.emplace(ambdrop::BuildModel(ambdrop::LoadConfig(config_path, overrides).params));
+    config.emplace(ambdrop::LoadConfig(config_path, overrides));
+    model.emplace(ambdrop::BuildModel(config->params));
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;
   }
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  if (!can_interface.empty()) return RunOverCan(*config, *model, can_interface, idle_exit_s);
   lcm::LCM lcm(url);
   if (!lcm.good()) {
     fmt::print(stderr, "error: cannot open LCM at {}\n", url);
@@ -101,8 +158,6 @@ int main(int argc, char** argv) {
           const ambdrop_lcm::sensor_readings_t* msg,
           Responder* r) { r->OnSensors(rbuf, channel, msg); },
       &responder);
-  std::signal(SIGINT, OnSignal);
-  std::signal(SIGTERM, OnSignal);
   while (!g_stop.load()) {
     lcm.handleTimeout(100);
     const double idle =

@@ -1,0 +1,152 @@
+#include "rt_core/four_dof_tdb.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "rt_core/hunt_crossley.hpp"
+#include "rt_core/ribbon_dahl.hpp"
+#include "rt_core/ribbon_kelvin_voigt.hpp"
+#include "rt_core/tdb_common.hpp"
+
+namespace ambdrop {
+
+FourDofTdb::FourDofTdb(const TdbParams& params)
+    : TouchdownBearing(params),
+      bearing_(BallBearingFromHertz(params.four_dof.bearing)),
+      state_size_(params.four_dof.ribbon == RibbonLaw::kDahl ? kStatesDahl : kStatesKelvinVoigt) {
+  const FourDofParams& f = params.four_dof;
+  if (!(f.inner_race_mass_kg > 0.0) || !(f.outer_race_mass_kg > 0.0)) {
+    throw std::invalid_argument("tdb '" + params.name + "': race masses must be positive");
+  }
+}
+
+void FourDofTdb::InitialState(double* s) const noexcept {
+  const FourDofParams& f = params_.four_dof;
+  std::fill(s, s + state_size_, 0.0);
+  // Both races' weight rests on the ribbon, the inner race's on the bearing.
+  const double races_weight_N = (f.inner_race_mass_kg + f.outer_race_mass_kg) * f.gravity_y_m_s2;
+  const double inner_weight_N = f.inner_race_mass_kg * f.gravity_y_m_s2;
+  if (f.ribbon == RibbonLaw::kKelvinVoigt) {
+    s[kOuterY] = races_weight_N / f.kelvin_voigt.stiffness_N_per_m;  // Eq. (4), u' = 0
+  } else {
+    s[kRibbonFy] =
+        std::clamp(races_weight_N, DahlLowerEnvelope(f.dahl, 0.0), DahlUpperEnvelope(f.dahl, 0.0));
+  }
+  double bearing_deflection_m = inner_weight_N / bearing_.stiffness_N_per_m;
+  if (f.bearing.law == BearingLaw::kHertz) {
+    // Eq. (5): K |d|^(3/2) = |W|.
+    const double ratio = std::abs(inner_weight_N) / bearing_.radial_constant_N_per_m1_5;
+    bearing_deflection_m = std::copysign(std::cbrt(ratio * ratio), inner_weight_N);
+  }
+  s[kInnerY] = s[kOuterY] + bearing_deflection_m;
+}
+
+void FourDofTdb::Evaluate(const JournalMotion& j, const double* s, double* rate,
+                          TdbForce* out) const noexcept {
+  const TdbParams& p = params_;
+  const FourDofParams& f = p.four_dof;
+  const double race_speed = s[kRaceSpin];
+  const double ix = s[kInnerX], iy = s[kInnerY], ivx = s[kInnerVx], ivy = s[kInnerVy];
+  const double ox = s[kOuterX], oy = s[kOuterY], ovx = s[kOuterVx], ovy = s[kOuterVy];
+  double jx = j.x_m;
+  double jy = j.y_m;
+  if (p.misalignment.enabled) {
+    jx -= p.misalignment.x_m;
+    jy -= p.misalignment.y_m;
+  }
+
+  // Journal / inner race: penetration beyond the clearance, normal n from the race centre.
+  const double dx = jx - ix;
+  const double dy = jy - iy;
+  const double distance = std::sqrt(dx * dx + dy * dy);
+  double nx = 1.0, ny = 0.0;
+  if (distance > 0.0) {
+    nx = dx / distance;
+    ny = dy / distance;
+  }
+  const double rvx = j.vx_m_s - ivx;
+  const double rvy = j.vy_m_s - ivy;
+  const double urs = distance - p.clearance_m;
+  *out = TdbForce{};
+  out->penetration_m = urs;
+  out->tdb_spin_rad_s = race_speed;
+  double normal = 0.0;
+  double friction = 0.0;
+  double on_rotor_x = 0.0, on_rotor_y = 0.0;
+  if (urs > 0.0) {
+    // Jarroux 2019, Eq. (10)
+    normal = HuntCrossleyForce(f.inner_contact, urs, rvx * nx + rvy * ny);
+    // Slip of the journal surface over the inner-race surface, Jarroux 2019 Eq. (11).
+    const double relative_whirl = -rvx * ny + rvy * nx;
+    const double inner_race_radius = p.journal_radius_m + p.clearance_m;
+    const double slip =
+        relative_whirl + j.spin_rad_s * p.journal_radius_m - race_speed * inner_race_radius;
+    friction = FrictionForce(p.friction, normal, slip);
+    const double tangential_on_rotor =
+        -friction - p.friction.whirl_damping_N_s_per_m * relative_whirl;
+    on_rotor_x = -normal * nx - tangential_on_rotor * ny;
+    on_rotor_y = -normal * ny + tangential_on_rotor * nx;
+    out->torque_on_rotor_N_m = -friction * p.journal_radius_m;
+  }
+  out->fx_N = on_rotor_x;
+  out->fy_N = on_rotor_y;
+  out->normal_force_N = normal;
+  out->tangential_force_N = friction;
+
+  // Ball bearing between the races, Jarroux 2019 Eq. (5)-(8).
+  double bearing_x = 0.0, bearing_y = 0.0;  // on the inner race
+  BallBearingForce(f.bearing.law, bearing_, ix - ox, iy - oy, ivx - ovx, ivy - ovy, &bearing_x,
+                   &bearing_y);
+
+  // Ribbon restoring force frd per axis (the outer race feels -frd).
+  double ribbon_x = 0.0, ribbon_y = 0.0;
+  switch (f.ribbon) {
+    case RibbonLaw::kKelvinVoigt:
+      // Jarroux 2019, Eq. (4)
+      ribbon_x = KelvinVoigtRibbonForce(f.kelvin_voigt, ox, ovx);
+      ribbon_y = KelvinVoigtRibbonForce(f.kelvin_voigt, oy, ovy);
+      break;
+    case RibbonLaw::kDahl:
+      // Jarroux 2019, Eq. (1)-(3)
+      ribbon_x = s[kRibbonFx];
+      ribbon_y = s[kRibbonFy];
+      rate[kRibbonFx] = DahlRibbonForceRate(f.dahl, ox, ovx, ribbon_x);
+      rate[kRibbonFy] = DahlRibbonForceRate(f.dahl, oy, ovy, ribbon_y);
+      break;
+  }
+
+  // Outer race / housing: Hunt-Crossley, Eq. (10), beyond the ribbon clearance.
+  double housing_x = 0.0, housing_y = 0.0;  // on the outer race
+  const double outer_radius = std::sqrt(ox * ox + oy * oy);
+  const double uh = outer_radius - f.ribbon_clearance_m;
+  if (uh > 0.0) {
+    const double onx = ox / outer_radius;
+    const double ony = oy / outer_radius;
+    // Jarroux 2019, Eq. (10)
+    const double fh = HuntCrossleyForce(f.housing_contact, uh, ovx * onx + ovy * ony);
+    housing_x = -fh * onx;
+    housing_y = -fh * ony;
+  }
+
+  // Race motion: Newton on each race, with the races' weight.
+  rate[kInnerX] = ivx;
+  rate[kInnerY] = ivy;
+  rate[kInnerVx] = (bearing_x - on_rotor_x) / f.inner_race_mass_kg;
+  rate[kInnerVy] = (bearing_y - on_rotor_y) / f.inner_race_mass_kg + f.gravity_y_m_s2;
+  rate[kOuterX] = ovx;
+  rate[kOuterY] = ovy;
+  rate[kOuterVx] = (housing_x - bearing_x - ribbon_x) / f.outer_race_mass_kg;
+  rate[kOuterVy] = (housing_y - bearing_y - ribbon_y) / f.outer_race_mass_kg + f.gravity_y_m_s2;
+
+  // Race spin, Jarroux 2019 Eq. (9), M1 on the load the balls carry.
+  const double bearing_load = std::sqrt(bearing_x * bearing_x + bearing_y * bearing_y);
+  rate[kRaceSpin] = RaceAcceleration(p, race_speed, friction, bearing_load);
+
+  // What the housing (the rig's load cells) receives: +frd from the ribbon, minus the contact.
+  const double support_x = ribbon_x - housing_x;
+  const double support_y = ribbon_y - housing_y;
+  out->support_force_N = std::sqrt(support_x * support_x + support_y * support_y);
+}
+
+}  // namespace ambdrop

@@ -1,0 +1,80 @@
+// The [realtime] table: defaults, values, and each rule's error with file, line and key.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "io/config_loader.hpp"
+
+namespace ambdrop {
+namespace {
+
+using ::testing::HasSubstr;
+
+const std::string kRigid = R"(
+[rotor]
+model = "rigid"
+[rotor.rigid]
+mass_kg = 10.0
+polar_inertia_kg_m2 = 0.01
+transverse_inertia_kg_m2 = 0.1
+centre_of_mass_m = 0.2
+)";
+
+std::string ErrorOf(const std::string& text) {
+  try {
+    LoadConfigFromString(text, "test.toml");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(ConfigRealtime, DefaultsWithoutTheTable) {
+  const RealtimeConfig r = LoadConfigFromString(kRigid, "test.toml").realtime;
+  EXPECT_EQ(r.priority, 0);
+  EXPECT_EQ(r.cpu, -1);
+  EXPECT_EQ(r.spin_s, 0.0);
+  EXPECT_FALSE(r.enforce);
+}
+
+TEST(ConfigRealtime, ValuesLoad) {
+  const RealtimeConfig r = LoadConfigFromString(kRigid + R"(
+[realtime]
+priority = 80
+cpu = 1
+spin_s = 20e-6
+enforce = true
+)",
+                                                "test.toml")
+                               .realtime;
+  EXPECT_EQ(r.priority, 80);
+  EXPECT_EQ(r.cpu, 1);
+  EXPECT_EQ(r.spin_s, 20e-6);
+  EXPECT_TRUE(r.enforce);
+}
+
+TEST(ConfigRealtime, OverridesApply) {
+  const RealtimeConfig r =
+      LoadConfigFromString(kRigid, "test.toml", {"realtime.priority=50"}).realtime;
+  EXPECT_EQ(r.priority, 50);
+}
+
+TEST(ConfigRealtime, Rules) {
+  EXPECT_THAT(ErrorOf(kRigid + "[realtime]\npriority = 100\n"),
+              HasSubstr("test.toml:10: key 'realtime.priority'"));
+  EXPECT_THAT(ErrorOf(kRigid + "[realtime]\npriority = 1.5\n"),
+              HasSubstr("key 'realtime.priority'"));
+  EXPECT_THAT(ErrorOf(kRigid + "[realtime]\ncpu = -2\n"),
+              HasSubstr("test.toml:10: key 'realtime.cpu'"));
+  EXPECT_THAT(ErrorOf(kRigid + "[realtime]\nspin_s = -1e-6\n"),
+              HasSubstr("test.toml:10: key 'realtime.spin_s'"));
+  EXPECT_THAT(ErrorOf(kRigid + "[realtime]\nspin_s = 0.5\n"), HasSubstr("key 'realtime.spin_s'"));
+  EXPECT_THAT(ErrorOf(kRigid + "[realtime]\nenforce = 1\n"),
+              HasSubstr("test.toml:10: key 'realtime.enforce'"));
+  EXPECT_THAT(ErrorOf(kRigid + "[realtime]\nspin_us = 20\n"),
+              HasSubstr("unknown key 'realtime.spin_us'"));
+}
+
+}  // namespace
+}  // namespace ambdrop

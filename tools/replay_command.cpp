@@ -1,0 +1,151 @@
+#include "tools/replay_command.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <exception>
+#include <filesystem>
+#include <optional>
+
+#include "controller_if/replay_run.hpp"
+#include "io/config_loader.hpp"
+#include "io/json_writer.hpp"
+#include "io/timeseries_csv.hpp"
+#include "rt_core/model.hpp"
+#include "tools/exit_codes.hpp"
+#include "tools/record/run_record_reader.hpp"
+#include "tools/record/sensor_diff.hpp"
+#include "tools/run_summary.hpp"
+#include "tools/tdb_summary_json.hpp"
+
+namespace ambdrop {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* StatusText(const ReplayResult& result) {
+  if (result.watchdog_stop) return "watchdog_stop";
+  return result.status == StepStatus::kOk ? "ok" : "diverged";
+}
+
+}  // namespace
+
+int RunReplayCommand(const ReplayOptions& options) {
+  RunRecordFile record;
+  try {
+    record = ReadRunRecord(options.record_path);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitError;
+  }
+  for (const std::string& w : record.warnings) fmt::print(stderr, "warning: {}\n", w);
+
+  const bool recorded_config = options.config_path.empty() && options.overrides.empty();
+  LoadedConfig config;
+  std::optional<Model> model;
+  try {
+    config =
+        options.config_path.empty()
+            ? LoadConfigFromString(record.header.config_toml,
+                                   options.record_path + " (recorded config)", options.overrides)
+            : LoadConfig(options.config_path, options.overrides);
+    model.emplace(BuildModel(config.params));
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitConfig;
+  }
+  if (model->params.simulation.step_s != record.header.step_s) {
+    fmt::print(stderr,
+               "error: the config's simulation.step_s ({} s) differs from the record's ({} s): "
+               "recorded steps would fall at other times\n",
+               model->params.simulation.step_s, record.header.step_s);
+    return kExitConfig;
+  }
+
+  const fs::path out_dir(options.out_dir);
+  std::optional<TimeseriesCsvWriter> csv;
+  try {
+    fs::create_directories(out_dir);
+    WriteTextFile(out_dir / "effective_config.toml", config.effective_toml);
+    csv.emplace(out_dir / "timeseries.csv", *model);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitError;
+  }
+
+  std::vector<std::string> sensor_names;
+  for (const SensorParams& s : model->params.sensors) sensor_names.push_back(s.name);
+  SensorDiff diff(record.sensors, sensor_names);
+  RunSummary summary(model->params);
+  std::string output_error;
+  const auto start = std::chrono::steady_clock::now();
+  const ReplayResult result = ReplayRun(
+      *model, record.run,
+      [&](const Observation& o) {
+        summary.Add(o);
+        if (!output_error.empty()) return;
+        try {
+          csv->Write(o);
+        } catch (const std::exception& e) {
+          output_error = e.what();
+        }
+      },
+      [&](const RecordedSensors& s) { diff.Add(s); });
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  try {
+    csv->Close();
+  } catch (const std::exception& e) {
+    if (output_error.empty()) output_error = e.what();
+  }
+
+  const double dt = model->params.simulation.step_s;
+  JsonWriter json;
+  json.BeginObject();
+  json.Key("record").String(options.record_path);
+  json.Key("source").String(record.header.source);
+  json.Key("recorded_with").String(record.header.ambdrop_version);
+  json.Key("config").String(recorded_config ? "recorded" : options.config_path);
+  json.Key("config_hash_recorded").String(record.header.config_hash);
+  json.Key("status").String(StatusText(result));
+  json.Key("recorded_status").String(record.footer ? record.footer->status : "unknown");
+  json.Key("steps").Integer(result.steps);
+  json.Key("damaged").Bool(record.damaged);
+  json.Key("wall_time_s").Number(wall_s);
+  json.Key("replay").BeginObject();
+  diff.WriteJson(json, dt);
+  json.EndObject();
+  json.Key("warnings").BeginArray();
+  for (const std::string& w : record.warnings) json.String(w);
+  json.EndArray();
+  WriteTdbSummaries(json, summary);
+  json.EndObject();
+  try {
+    WriteTextFile(out_dir / "summary.json", json.str());
+  } catch (const std::exception& e) {
+    if (output_error.empty()) output_error = e.what();
+  }
+
+  if (!options.quiet) {
+    fmt::print("{}: replayed {} steps ({:.3f} s simulated) in {:.2f} s: {}\n", options.record_path,
+               result.steps, result.steps * dt, wall_s, StatusText(result));
+    fmt::print("sensor outputs vs the record: {}\n", diff.Describe(dt));
+  }
+  if (!output_error.empty()) {
+    fmt::print(stderr, "error: {}\n", output_error);
+    return kExitError;
+  }
+  if (result.status != StepStatus::kOk && !result.failure_message.empty()) {
+    fmt::print(stderr, "replay stopped: {}\n", result.failure_message);
+  }
+  if (recorded_config && !diff.identical() && !record.damaged) {
+    fmt::print(stderr,
+               "error: with the recorded config the replay must reproduce the record bit for bit, "
+               "and it does not: {}\n",
+               diff.Describe(dt));
+    return kExitRunFailed;
+  }
+  return kExitOk;
+}
+
+}  // namespace ambdrop

@@ -1,0 +1,23 @@
+#pragma once
+#include <string>
+#include <vector>
+
+namespace ambdrop {
+
+struct ReplayOptions {
+  std::string record_path;             ///< FILE.lcm written by `sim --record` or `hil --record`
+  std::string config_path;             ///< "": the config stored in the record
+  std::vector<std::string> overrides;  ///< applied to whichever config is used
+  std::string out_dir = "out";
+  bool quiet = false;
+};
+
+/// `ambdrop replay`: re-runs a recorded run offline from its recorded inputs at their recorded
+/// steps and compares the sensor samples with those sent live. Writes timeseries.csv,
+/// summary.json (with a "replay" object: identical or the first difference) and
+/// effective_config.toml. With the recorded config the outputs must be bit-identical: a
+/// difference then exits with kExitRunFailed. With another config (--config, --set) the
+/// differences are the answer, reported, and the exit is 0.
+int RunReplayCommand(const ReplayOptions& options);
+
+}  // namespace ambdrop

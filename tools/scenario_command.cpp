@@ -1,0 +1,159 @@
+#include "tools/scenario_command.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include "controller_if/controller_watchdog.hpp"
+#include "controller_if/hil_session.hpp"
+#include "controller_if/internal_controller_link.hpp"
+#include "controller_if/scenario_faults.hpp"
+#include "controller_if/state_dump.hpp"
+#include "io/config_loader.hpp"
+#include "io/json_writer.hpp"
+#include "io/timeseries_csv.hpp"
+#include "tools/exit_codes.hpp"
+#include "tools/record/run_record_writer.hpp"
+#include "tools/run_summary.hpp"
+#include "tools/scenario_outcome.hpp"
+#include "tools/tdb_summary_json.hpp"
+
+namespace ambdrop {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* StatusOf(HilStop stop) {
+  switch (stop) {
+    case HilStop::kWatchdog:
+      return "watchdog_stop";
+    case HilStop::kDiverged:
+      return "diverged";
+    default:
+      return "ok";
+  }
+}
+
+}  // namespace
+
+int RunScenarioCommand(const SimOptions& options) {
+  LoadedConfig config;
+  std::optional<Model> model;
+  try {
+    config = LoadConfig(options.scenario_path, options.overrides);
+    if (!config.scenario) {
+      throw ConfigError(options.scenario_path +
+                        ": not a scenario: it has no [scenario] table (see configs/scenarios/)");
+    }
+    model.emplace(BuildModel(config.params));
+    if (model->params.controller.kind != ControllerKind::kInternalPid) {
+      throw ConfigError(options.scenario_path +
+                        ": a scenario needs the in-process controller ([controller] with a pid) "
+                        "for its faults to act on");
+    }
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitConfig;
+  }
+  const ScenarioParams& scenario = *config.scenario;
+  const std::int64_t substeps = ControllerSubsteps(*model);
+  const double dt = model->params.simulation.step_s;
+  const double period_s = static_cast<double>(substeps) * dt;
+
+  const fs::path out_dir(options.out_dir);
+  std::optional<TimeseriesCsvWriter> csv;
+  std::unique_ptr<RunRecordWriter> recorder;
+  try {
+    fs::create_directories(out_dir);
+    WriteTextFile(out_dir / "effective_config.toml", config.effective_toml);
+    csv.emplace(out_dir / "timeseries.csv", *model);
+    if (!options.record_path.empty()) {
+      RecordHeaderInfo header;
+      header.source = "sim";
+      header.controller = "internal+scenario";
+      header.config_toml = config.effective_toml;
+      header.sensor_every_steps = substeps;
+      header.output_every_steps =
+          std::max<std::int64_t>(1, std::llround(model->params.simulation.output_interval_s / dt));
+      header.total_steps = model->total_steps;
+      recorder = std::make_unique<RunRecordWriter>(options.record_path, *model, header);
+    }
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitError;
+  }
+
+  InternalControllerLink controller(*model, period_s);
+  ScenarioLink link(&controller, *model, scenario);
+  ScenarioTrigger trigger(*model, scenario);
+  HilOptions hil;
+  hil.watchdog_timeout_s = scenario.watchdog_timeout_s;
+  hil.silence_action = ParseSilenceAction(scenario.silence_action);
+  hil.recorder = recorder.get();
+  auto outputs = std::make_unique<HilSession::OutputRing>();
+  HilSession session(*model, &link, {&trigger}, hil, outputs.get());
+  RunSummary summary(model->params);
+  ScenarioOutcome outcome(*model);
+  Observation o;
+  const auto drain = [&] {
+    while (outputs->TryPop(&o)) {
+      summary.Add(o);
+      outcome.Add(o);
+      csv->Write(o);
+    }
+  };
+  // The virtual clock: period n starts at n periods; the session runs on this thread.
+  const std::int64_t period_ns = std::llround(period_s * 1e9);
+  session.Start(0);
+  for (std::int64_t n = 1; session.Period(n * period_ns); ++n) drain();
+  drain();
+  csv->Close();
+  if (recorder) recorder->Finish(StatusOf(session.stop()), session.state().step_index);
+
+  const char* status = StatusOf(session.stop());
+  const std::vector<ScenarioOutcome::Check> checks =
+      outcome.Evaluate(scenario.expect, status, session);
+  bool all_pass = true;
+  for (const auto& c : checks) all_pass = all_pass && c.pass;
+
+  JsonWriter json;
+  json.BeginObject();
+  json.Key("config").String(options.scenario_path);
+  json.Key("name").String(model->params.name);
+  json.Key("status").String(status);
+  json.Key("steps").Integer(session.state().step_index);
+  json.Key("power_events").Integer(session.counters().power_events);
+  json.Key("watchdog_silence_episodes").Integer(session.watchdog().silence_episodes());
+  json.Key("currents_swallowed").Integer(link.messages_swallowed());
+  json.Key("scenario").BeginObject();
+  json.Key("description").String(scenario.description);
+  json.Key("relevitated").Bool(outcome.relevitated());
+  json.Key("pass").Bool(all_pass);
+  json.Key("checks");
+  WriteScenarioChecks(json, checks);
+  json.EndObject();
+  WriteTdbSummaries(json, summary);
+  json.EndObject();
+  WriteTextFile(out_dir / "summary.json", json.str());
+
+  if (!options.quiet) {
+    fmt::print("{}: {}\n  {}\n", options.scenario_path, status, scenario.description);
+    for (const auto& c : checks) {
+      fmt::print("  {:<4} {:<28} expected {:<14} got {}\n", c.pass ? "ok" : "FAIL", c.name,
+                 c.expected, c.actual);
+    }
+  }
+  if (session.stop() == HilStop::kDiverged) {
+    fmt::print(stderr, "error: the simulation diverged: {}\n",
+               DescribeFailure(*model, session.step_status(), session.state()));
+  }
+  if (!all_pass) {
+    fmt::print(stderr, "error: {}: an expected outcome did not happen\n", options.scenario_path);
+    return kExitExpectationFailed;
+  }
+  return kExitOk;
+}
+
+}  // namespace ambdrop
