@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -149,13 +150,23 @@ TEST_F(Seed000Models, ContactLawAndKelvinVoigtFourDofAgree) {
   }
 }
 
-// DISABLED: fails with the assumed Dahl parameters (the paper gives none). ambdrop, drop at rest:
+// Fails with the assumed Dahl parameters (the paper gives none). ambdrop, drop at rest:
 // #2 rebounds 265 um (DE) / 357 um (NDE); #3 at muFN = 400 N rebounds 292 / 397 um (+10 %), and
 // with muFN cut 30x / 4x 367 / 470 um (+39 % / +32 %). The Kelvin-Voigt crd (7e3 N s/m) at drop
 // speeds (~0.07 m/s) dissipates as much as a 400 N dry-friction threshold; the ribbon is crushed
 // by the static load in this rig (keq urd = 750 N), so the rebound comes off the stiff bearing.
-// Run with --gtest_also_run_disabled_tests once the ribbon parameters are sourced.
-TEST_F(Seed000Models, DISABLED_DahlAtTheHarmonicThresholdFlattensTheRebounds) {
+// Skipped with that reason; AMBDROP_RUN_KNOWN_FAILURES=1 runs it (issue 5 is open on it).
+bool SkipKnownFailure() {
+  const char* run = std::getenv("AMBDROP_RUN_KNOWN_FAILURES");
+  return run == nullptr || std::string(run) != "1";
+}
+constexpr const char* kDahlReason =
+    "known failure, issue 5: with the assumed Dahl/Kelvin-Voigt ribbon parameters #3 rebounds "
+    "~10 % higher than #2 (the paper: >= 30 % lower); the ribbon is crushed by the static load "
+    "in this rig. Set AMBDROP_RUN_KNOWN_FAILURES=1 to run it.";
+
+TEST_F(Seed000Models, DahlAtTheHarmonicThresholdFlattensTheRebounds) {
+  if (SkipKnownFailure()) GTEST_SKIP() << kDahlReason;
   const Drop d = DropAtRest("jarroux2019_industrial_model3.toml", {});
   Print("#3 Dahl, harmonic muFN", d);
   for (std::size_t i = 0; i < d.names.size(); ++i) {
@@ -165,8 +176,9 @@ TEST_F(Seed000Models, DISABLED_DahlAtTheHarmonicThresholdFlattensTheRebounds) {
   }
 }
 
-// DISABLED: fails with the assumed Dahl parameters, see above.
-TEST_F(Seed000Models, DISABLED_DahlWithTheDropThresholdComesBackToKelvinVoigt) {
+// Fails with the assumed Dahl parameters, see above.
+TEST_F(Seed000Models, DahlWithTheDropThresholdComesBackToKelvinVoigt) {
+  if (SkipKnownFailure()) GTEST_SKIP() << kDahlReason;
   // Sec. 6.1: muFN reduced by a factor of 30 at DE and 4 at NDE.
   const Drop d = DropAtRest("jarroux2019_industrial_model3.toml",
                             {"tdb.de.four_dof.dahl.threshold_scale=0.033333333333333333",
