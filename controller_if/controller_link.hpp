@@ -1,5 +1,6 @@
 #pragma once
 #include <array>
+#include <chrono>
 #include <cstdint>
 
 #include "controller_if/power_state.hpp"
@@ -26,6 +27,14 @@ class ControllerLink {
   /// One sample of the sensors for the controller (dropped and counted if the link is full).
   virtual void SendSensors(const SensorReadings& readings, std::int64_t step,
                            double time_s) noexcept = 0;
+  /// Lock step (`ambdrop hil --virtual-clock --lockstep`): waits until the controller's answer
+  /// to the last sample sent has arrived, at most `timeout`; true if it has (or no answer is
+  /// due: the in-process controller, a sample the link did not send). Not for the real-time
+  /// loop, which never waits on the controller.
+  virtual bool AwaitAnswer(std::chrono::nanoseconds timeout) noexcept {
+    (void)timeout;
+    return true;
+  }
   /// The emulator's state at the sample SendSensors is about to send, for links that report
   /// status besides the sensors (CAN's status frame: power, spin, contact). Called just before
   /// each SendSensors; links without a status channel ignore it.

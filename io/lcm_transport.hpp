@@ -93,6 +93,8 @@ class LcmEndpoint {
   // --- Real-time side ---------------------------------------------------------------------
   /// Oldest controller currents not yet taken. False when none arrived.
   bool TryPopCurrents(HilCurrents* out) noexcept { return currents_.TryPop(out); }
+  /// Controller currents received and not yet taken.
+  std::size_t pending_currents() const noexcept { return currents_.size(); }
   /// Oldest trigger not yet taken. False when none arrived.
   bool TryPopTrigger(HilTrigger* out) noexcept { return triggers_.TryPop(out); }
   /// Queues readings for publishing. False (counted) when the ring is full.

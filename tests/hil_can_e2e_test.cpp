@@ -11,7 +11,9 @@
 //           (ctest: hw_hil_can). Elsewhere these cases skip and say why, unless
 //           AMBDROP_REQUIRE_HW=1 (set in the VM), which makes a missing device a failure.
 // Config: configs/jarroux2019_industrial_pid_can.toml (1 kHz exchange on classic CAN).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -29,6 +31,7 @@
 
 #include "controller_if/hil_session.hpp"
 #include "controller_if/internal_controller_link.hpp"
+#include "controller_if/replay_run.hpp"
 #include "io/can_bus_double.hpp"
 #include "io/can_controller_view.hpp"
 #include "io/config_loader.hpp"
@@ -42,6 +45,9 @@
 #include "tools/can_controller_link.hpp"
 #include "tools/can_pid_responder.hpp"
 #include "tools/gpio_trigger_source.hpp"
+#include "tools/record/candump_record.hpp"
+#include "tools/record/run_record_reader.hpp"
+#include "tools/record/sensor_diff.hpp"
 
 namespace ambdrop {
 namespace {
@@ -173,10 +179,13 @@ struct RunResult {
 /// `guard_from_s` > 0 counts allocations in the periods from then to 10 ms later.
 RunResult RunSession(const Model& model, ControllerLink* link, std::vector<TriggerSource*> triggers,
                      const std::function<void(double)>& before_period,
-                     const std::function<void()>& after_period, double guard_from_s = -1.0) {
+                     const std::function<void()>& after_period, double guard_from_s = -1.0,
+                     RunRecorder* recorder = nullptr) {
   RunResult result;
   auto outputs = std::make_unique<HilSession::OutputRing>();
-  HilSession session(model, link, std::move(triggers), HilOptions{}, outputs.get());
+  HilOptions options;
+  options.recorder = recorder;
+  HilSession session(model, link, std::move(triggers), options, outputs.get());
   const auto period_ns = std::llround(session.period_s() * 1e9);
   result.observations.reserve(
       static_cast<std::size_t>(model.total_steps / 10 + 16));  // output every 10 steps
@@ -253,9 +262,12 @@ class HilCanE2e : public ::testing::TestWithParam<Transport> {
   }
 
   /// A run over CAN: `at_time` acts before each period; the controller answers each exchange.
+  /// `tap` (optional) is called after the trigger injection (0), after each period (1) and
+  /// after the controller's answer (2), with the start time of the period just prepared or run.
   RunResult RunOverCan(const std::function<void(double, CanControllerLink&)>& at_time,
-                       std::vector<TriggerSource*> extra_triggers = {},
-                       double guard_from_s = -1.0) {
+                       std::vector<TriggerSource*> extra_triggers = {}, double guard_from_s = -1.0,
+                       RunRecorder* recorder = nullptr,
+                       const std::function<void(int, double)>& tap = {}) {
     const CanConfig& can = *config_.can;
     const double period_s = ControllerSubsteps(*model_) * config_.params.simulation.step_s;
     CanControllerLink link(bus_.emulator.get(), &can.frame_map,
@@ -267,16 +279,24 @@ class HilCanE2e : public ::testing::TestWithParam<Transport> {
     std::vector<TriggerSource*> triggers = {&link};
     triggers.insert(triggers.end(), extra_triggers.begin(), extra_triggers.end());
     std::uint64_t exchanges = 0;
+    double period_start_s = -period_s;  // Start() sends the step-0 sample "after period -1"
     RunResult result = RunSession(
-        *model_, &link, triggers, [&](double time_s) { at_time(time_s, link); },
+        *model_, &link, triggers,
+        [&](double time_s) {
+          at_time(time_s, link);
+          period_start_s = time_s;
+          if (tap) tap(0, time_s);
+        },
         [&] {
+          if (tap) tap(1, period_start_s);
           // Lock step: when sensors went out, the controller answers and the currents are in
           // before the next period.
           if (link.counters().exchanges_sent == exchanges) return;
           exchanges = link.counters().exchanges_sent;
           if (responder.Service(kWait) > 0) (void)link.WaitForFrames(kWait);
+          if (tap) tap(2, period_start_s);
         },
-        guard_from_s);
+        guard_from_s, recorder);
     result.link = link.counters();
     result.responder = responder.counters();
     return result;
@@ -515,6 +535,88 @@ TEST_P(HilCanE2e, GpioPowerFailLineDropsTheRotorAndTheMirrorFollows) {
   EXPECT_LT(first_contact, kTrigger_s + 0.05);
   EXPECT_TRUE(mirror_level()) << "the mirror output does not show the drop";
   if (GetParam() == Transport::kKernel) pull(false);
+}
+
+// Issue 4 over the CAN double: the run recorded with --record replays bit for bit, and so does
+// a candump -l log of the bus (what `candump -l vcan0` writes on a bench) through the frame map:
+// the controller's frames, stamped where a bench's candump would see them relative to the
+// emulator's sensor frames, are applied at the same steps as live.
+TEST_P(HilCanE2e, RecordAndCandumpLogReplayTheRunBitForBit) {
+  if (GetParam() == Transport::kKernel) {
+    GTEST_SKIP() << "host only: the candump stamps come from the lock-step virtual clock, which "
+                    "only the in-process bus delivers synchronously";
+  }
+  Load({"controller.rate_Hz=1000"});
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("ambdrop_can_record_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto lcm_log = dir / "run.lcm";
+  const auto candump_log = dir / "candump.log";
+
+  // A fourth endpoint hears everything on the bus, as candump does.
+  CanSocketOptions all;  // the kernel's default filter: every frame
+  all.fd_frames = config_.can->fd;
+  CanBusDouble tap_bus(*bus_.medium, all);
+  std::ofstream candump(candump_log);
+  const double period_s = ControllerSubsteps(*model_) * config_.params.simulation.step_s;
+  const auto drain_tap = [&](double stamp_s) {
+    CanFrame frame;
+    while (tap_bus.Receive(&frame, std::chrono::nanoseconds(0)) == CanStatus::kOk) {
+      std::string data;
+      for (int i = 0; i < frame.len; ++i) data += fmt::format("{:02X}", frame.data[i]);
+      candump << fmt::format("({:.6f}) vcan0 {:03X}#{}\n", 1700000000.0 + stamp_s, frame.id, data);
+    }
+  };
+  RecordHeaderInfo header;
+  header.source = "hil";
+  header.controller = "can:double";
+  header.config_toml = config_.effective_toml;
+  header.sensor_every_steps = ControllerSubsteps(*model_);
+  header.output_every_steps = 10;
+  header.total_steps = model_->total_steps;
+  RunRecordWriter writer(lcm_log, *model_, header);
+  bool triggered = false;
+  const RunResult live = RunOverCan(
+      [&](double time_s, CanControllerLink& link) {
+        if (!triggered && time_s >= kTrigger_s) {
+          triggered = true;
+          InjectTrigger(link, false);
+        }
+      },
+      {}, -1.0, &writer,
+      [&](int stage, double start_s) {
+        // Stamped in wall time as a live loop would see it: the period that computes from
+        // start_s runs at the deadline start_s + T and sends its sample then; a frame injected
+        // before it arrived just before that deadline, the controller's answer just after.
+        if (stage == 0) drain_tap(start_s + period_s - 1e-6);
+        if (stage == 1) drain_tap(start_s + period_s + 1e-6);
+        if (stage == 2) drain_tap(start_s + period_s + 2e-6);
+      });
+  ASSERT_EQ(live.stop, HilStop::kDuration);
+  writer.Finish("ok", model_->total_steps);
+  candump.close();
+  ASSERT_GT(live.FirstContact(tdbs()), kTrigger_s);
+
+  const RunRecordFile record = ReadRunRecord(lcm_log);
+  ASSERT_FALSE(record.damaged);
+  ASSERT_EQ(record.run.power.size(), 1U);
+  std::vector<std::string> names;
+  for (const auto& s : config_.params.sensors) names.push_back(s.name);
+  SensorDiff from_record(record.sensors, names);
+  ReplayRun(*model_, record.run, {}, [&](const RecordedSensors& s) { from_record.Add(s); });
+  EXPECT_TRUE(from_record.identical()) << from_record.Describe(config_.params.simulation.step_s);
+
+  const CandumpRecord dump = ReadCandumpRecord(candump_log, *model_, *config_.can);
+  EXPECT_EQ(dump.malformed_lines, 0);
+  EXPECT_EQ(dump.unknown_frames, 0);
+  ASSERT_EQ(dump.run.power.size(), 1U);
+  EXPECT_EQ(dump.run.power[0].step, record.run.power[0].step);
+  // The candump inputs drive a replay whose sensor samples are the live run's, bit for bit.
+  SensorDiff from_candump(record.sensors, names);
+  ReplayRun(*model_, dump.run, {}, [&](const RecordedSensors& s) { from_candump.Add(s); });
+  EXPECT_EQ(from_candump.differing(), 0) << from_candump.Describe(config_.params.simulation.step_s);
+  EXPECT_GT(from_candump.compared(), static_cast<std::int64_t>(record.sensors.size()) * 9 / 10);
+  std::filesystem::remove_all(dir);
 }
 
 INSTANTIATE_TEST_SUITE_P(Transports, HilCanE2e,

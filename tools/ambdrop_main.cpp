@@ -149,6 +149,16 @@ int main(int argc, char** argv) {
   hil_command->add_option("--out", hil.out_dir, "Output directory")->capture_default_str();
   AddSetOption(hil_command, &hil.overrides);
   hil_command->add_flag("--quiet,-q", hil.quiet, "No summary on stdout");
+  CLI::Option* lockstep =
+      hil_command->add_flag("--lockstep", hil.lockstep,
+                            "With --virtual-clock: after each sample sent, wait for the external "
+                            "controller's answer (a controller slower than real time closes the "
+                            "loop sample by sample)");
+  hil_command
+      ->add_option("--lockstep-timeout-s", hil.lockstep_timeout_s,
+                   "Longest wait for an answer in --lockstep (wall time, s)")
+      ->capture_default_str();
+  lockstep->needs(hil_command->get_option("--virtual-clock"));
   hil_command
       ->add_option("--record", hil.record_path,
                    "Record the run (currents in with their receive time, power events, sensor "

@@ -88,6 +88,19 @@ bool CanControllerLink::WaitForFrames(std::chrono::nanoseconds timeout) noexcept
   return true;
 }
 
+bool CanControllerLink::AwaitAnswer(std::chrono::nanoseconds timeout) noexcept {
+  if (answered_exchanges_ == counters_.exchanges_sent) return true;  // nothing sent since
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  Drain();
+  while (!fresh_currents_) {
+    const auto left = deadline - std::chrono::steady_clock::now();
+    if (left <= std::chrono::nanoseconds(0)) return false;
+    (void)WaitForFrames(std::chrono::duration_cast<std::chrono::nanoseconds>(left));
+  }
+  answered_exchanges_ = counters_.exchanges_sent;
+  return true;
+}
+
 bool CanControllerLink::PollCurrents(CurrentsMessage* out) noexcept {
   Drain();
   if (!fresh_currents_) return false;

@@ -76,6 +76,8 @@ class CanControllerLink final : public ControllerLink, public TriggerSource {
   /// true if any frame came. For lock-step runs (tests, a synchronous controller); the loop
   /// itself never waits on the bus.
   bool WaitForFrames(std::chrono::nanoseconds timeout) noexcept;
+  /// Lock step: waits (WaitForFrames) until currents answer the last exchange sent.
+  bool AwaitAnswer(std::chrono::nanoseconds timeout) noexcept override;
 
   /// Sensor samples per exchange (1: every sample is sent).
   std::int64_t send_every() const noexcept { return send_every_; }
@@ -96,6 +98,7 @@ class CanControllerLink final : public ControllerLink, public TriggerSource {
   FrameMapCounters map_counters_;
   CanLinkCounters counters_;
   bool fresh_currents_ = false;
+  std::uint64_t answered_exchanges_ = 0;  // exchanges whose answer AwaitAnswer has seen
   std::int64_t currents_receive_ns_ = 0;
   std::vector<std::uint32_t> current_keys_;  // sorted keys of frames that carry currents
   EmulatorOutputs outputs_;

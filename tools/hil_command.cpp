@@ -169,6 +169,7 @@ int RunHilCommand(const HilCommandOptions& options) {
                                                       : std::llround(config.realtime.spin_s * 1e9);
   const std::int64_t period_ns = std::llround(substeps * model->params.simulation.step_s * 1e9);
   std::string throttling_warning;  // advice, not a refusal: never an error
+  std::int64_t lockstep_timeouts = 0;
   std::thread rt([&] {
     try {
       if (!options.virtual_clock) {
@@ -188,12 +189,21 @@ int RunHilCommand(const HilCommandOptions& options) {
     Clock* clock = options.virtual_clock ? static_cast<Clock*>(&virtual_clock) : &monotonic;
     loop.emplace(clock, period_ns);
     session.Start(clock->Now());
+    const auto lockstep_timeout =
+        std::chrono::nanoseconds(std::llround(options.lockstep_timeout_s * 1e9));
+    if (options.lockstep && !links.link->AwaitAnswer(lockstep_timeout)) ++lockstep_timeouts;
     LoopRunOptions run;
     run.stop = &g_stop;
     // Periods the loop skipped after an overrun still advance the physics (HilSession::Period),
     // so simulated time keeps up with wall time.
     result = loop->Run(
-        [&](const LoopTick& tick) { return session.Period(tick.wake_ns, tick.missed_before); },
+        [&](const LoopTick& tick) {
+          const bool more = session.Period(tick.wake_ns, tick.missed_before);
+          if (more && options.lockstep && !links.link->AwaitAnswer(lockstep_timeout)) {
+            ++lockstep_timeouts;
+          }
+          return more;
+        },
         run);
   });
   rt.join();
@@ -225,6 +235,8 @@ int RunHilCommand(const HilCommandOptions& options) {
   json.Key("missed_periods").Integer(result.missed_periods);
   json.Key("catch_up_periods").Integer(session.counters().catch_up_periods);
   json.Key("spin_us").Number(static_cast<double>(spin_ns) / 1e3);
+  json.Key("lockstep").Bool(options.lockstep);
+  json.Key("lockstep_timeouts").Integer(lockstep_timeouts);
   json.Key("currents_received").Integer(session.counters().currents_received);
   json.Key("sensor_samples_sent").Integer(session.counters().sensor_samples_sent);
   json.Key("power_events").Integer(session.counters().power_events);

@@ -18,6 +18,11 @@ struct HilCommandOptions {
   std::string silence_action = "hold";  ///< hold | zero | stop
   bool quiet = false;
   std::string record_path;  ///< "": no record; else an LCM event log for `ambdrop replay`
+  /// With virtual_clock: after each sample sent, wait (up to lockstep_timeout_s of wall time)
+  /// for the external controller's answer, so a controller slower than real time (a firmware
+  /// build on the host, an emulated CPU) still closes the loop sample by sample.
+  bool lockstep = false;
+  double lockstep_timeout_s = 1.0;
   // The command line over the config's [realtime] table: a flag given overrides its key.
   double spin_us = -1.0;  ///< --spin-us: poll the clock before each deadline (us); < 0: config
   bool rt_priority_given = false;  ///< --rt-priority was given (it may be 0: SCHED_OTHER)

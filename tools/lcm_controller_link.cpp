@@ -1,5 +1,7 @@
 #include "tools/lcm_controller_link.hpp"
 
+#include <thread>
+
 namespace ambdrop {
 
 bool LcmControllerLink::PollCurrents(CurrentsMessage* out) noexcept {
@@ -21,6 +23,18 @@ void LcmControllerLink::SendSensors(const SensorReadings& readings, std::int64_t
   r.sensor_count = sensor_count_;
   r.position_m = readings.reading_m;
   (void)endpoint_->TryPushSensors(r);  // a full ring drops and counts
+  ++samples_sent_;
+}
+
+bool LcmControllerLink::AwaitAnswer(std::chrono::nanoseconds timeout) noexcept {
+  if (samples_answered_ == samples_sent_) return true;
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (endpoint_->pending_currents() == 0) {
+    if (std::chrono::steady_clock::now() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::microseconds(20));
+  }
+  samples_answered_ = samples_sent_;
+  return true;
 }
 
 bool LcmControllerLink::Poll(double, PowerEvent* out) noexcept {

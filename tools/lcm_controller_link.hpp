@@ -15,10 +15,14 @@ class LcmControllerLink final : public ControllerLink, public TriggerSource {
   void SendSensors(const SensorReadings& readings, std::int64_t step,
                    double time_s) noexcept override;
   bool Poll(double time_s, PowerEvent* out) noexcept override;
+  /// Lock step: polls the receive ring until currents answer the last sample sent.
+  bool AwaitAnswer(std::chrono::nanoseconds timeout) noexcept override;
 
  private:
   LcmEndpoint* endpoint_;
   int sensor_count_;
+  std::int64_t samples_sent_ = 0;
+  std::int64_t samples_answered_ = 0;
 };
 
 }  // namespace ambdrop

@@ -13,6 +13,7 @@
 #include "io/timeseries_csv.hpp"
 #include "rt_core/model.hpp"
 #include "tools/exit_codes.hpp"
+#include "tools/record/candump_record.hpp"
 #include "tools/record/run_record_reader.hpp"
 #include "tools/record/sensor_diff.hpp"
 #include "tools/run_summary.hpp"
@@ -31,16 +32,26 @@ const char* StatusText(const ReplayResult& result) {
 }  // namespace
 
 int RunReplayCommand(const ReplayOptions& options) {
+  const bool candump = IsCandumpLog(options.record_path);
+  if (candump && options.config_path.empty()) {
+    fmt::print(stderr,
+               "error: {} is a candump log: give the config whose [can] frame map it follows "
+               "(--config)\n",
+               options.record_path);
+    return kExitUsage;
+  }
   RunRecordFile record;
-  try {
-    record = ReadRunRecord(options.record_path);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return kExitError;
+  if (!candump) {
+    try {
+      record = ReadRunRecord(options.record_path);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: {}\n", e.what());
+      return kExitError;
+    }
   }
   for (const std::string& w : record.warnings) fmt::print(stderr, "warning: {}\n", w);
 
-  const bool recorded_config = options.config_path.empty() && options.overrides.empty();
+  const bool recorded_config = !candump && options.config_path.empty() && options.overrides.empty();
   LoadedConfig config;
   std::optional<Model> model;
   try {
@@ -53,6 +64,31 @@ int RunReplayCommand(const ReplayOptions& options) {
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitConfig;
+  }
+  if (candump) {
+    if (!config.can) {
+      fmt::print(stderr, "error: {}: no [can] table to read the candump log with\n",
+                 options.config_path);
+      return kExitConfig;
+    }
+    try {
+      CandumpRecord dump = ReadCandumpRecord(options.record_path, *model, *config.can);
+      for (const std::string& w : dump.warnings) fmt::print(stderr, "warning: {}\n", w);
+      if (!options.quiet) {
+        fmt::print(
+            "{}: {} frames, {} from the controller, {} sensor sets, {} unknown, {} "
+            "malformed lines\n",
+            options.record_path, dump.frames, dump.controller_frames, dump.sensors.size(),
+            dump.unknown_frames, dump.malformed_lines);
+      }
+      record.run = std::move(dump.run);
+      record.sensors = std::move(dump.sensors);
+      record.header.source = "candump";
+      record.header.step_s = model->params.simulation.step_s;
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: {}\n", e.what());
+      return kExitError;
+    }
   }
   if (model->params.simulation.step_s != record.header.step_s) {
     fmt::print(stderr,

@@ -2,7 +2,8 @@
 # End to end over LCM udpm between two processes inside a network namespace this test creates
 # (loopback only): ambdrop-controller levitates the rotor through `ambdrop hil`, the scheduled
 # trigger drops it, and the drop matches the offline replay of the recorded inputs bit for bit
-# (`ambdrop replay` of the run's --record; replay exits 3 on any difference). LCM's udpm round trip here (~60-120 us) does not fit a 20 kHz lockstep, so the
+# (`ambdrop replay` of the run's --record; replay exits 3 on any difference); and at 20 kHz in
+# lock step on the virtual clock (--lockstep) the run is `ambdrop sim`'s, byte for byte. LCM's udpm round trip here (~60-120 us) does not fit a 20 kHz lockstep, so the
 # loop runs at 2 kHz. Usage: hil_lcm_netns.sh AMBDROP_BINARY SOURCE_DIR; exit 77 = skipped.
 set -euo pipefail
 tool=$1
@@ -26,7 +27,26 @@ unshare -n bash -c "
   '$tool' hil '$config' --controller lcm ${sets[*]} --set simulation.duration_s=0.4 \
     --rt-priority 80 --out '$work/out' --record '$work/run.lcm' --quiet
   wait
+  # 20 kHz in lock step on the virtual clock: the same controller process answers every sample.
+  '$controller' '$config' --idle-exit-s 1 > '$work/controller20k.log' 2>&1 &
+  sleep 0.5
+  '$tool' hil '$config' --controller lcm --virtual-clock --lockstep --set simulation.duration_s=0.3 \
+    --set trigger.time_s=0.15 --out '$work/lockstep' --quiet
+  wait
 "
+# Lock step over LCM at 20 kHz is the offline simulation, byte for byte: the external process
+# runs the same PID on the same samples, one period later, as the in-process controller does.
+"$tool" sim "$config" --set simulation.duration_s=0.3 --set trigger.time_s=0.15 \
+  --out "$work/sim" --quiet
+cmp "$work/sim/timeseries.csv" "$work/lockstep/timeseries.csv" || {
+  echo "FAIL: the 20 kHz lock-step run over LCM differs from ambdrop sim"
+  exit 1
+}
+grep -q '"lockstep_timeouts": 0' "$work/lockstep/summary.json" || {
+  echo "FAIL: the controller missed lock-step answers"
+  exit 1
+}
+echo "20 kHz lock step over LCM udpm: byte-identical to ambdrop sim"
 "$tool" replay "$work/run.lcm" --out "$work/replay" >"$work/replay.txt" || {
   cat "$work/replay.txt"
   echo "FAIL: the replay of the recorded inputs does not reproduce the live run"

@@ -112,7 +112,7 @@ RUN=$(mktemp -d "$W/run.XXXXXX")
 R="$RUN/root"
 mkdir -p "$R"/{bin,proc,sys,dev,tmp,mods,usr/bin,job}
 cp /bin/busybox "$R/bin/"
-for a in sh mount insmod ip mkdir cat echo poweroff sleep ls uname; do ln -s busybox "$R/bin/$a"; done
+for a in sh mount insmod ip mkdir cat echo poweroff sleep ls uname grep cmp sed head tail; do ln -s busybox "$R/bin/$a"; done
 for k in can can-raw can-dev vcan configfs; do
   f=$(find "$K/lib/modules" -name "$k.ko*" | head -1)
   [ -n "$f" ] || continue  # built into this kernel

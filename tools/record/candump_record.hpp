@@ -1,0 +1,43 @@
+#pragma once
+// A `candump -l` log (can-utils) as the input record of a replay: lines
+//   (1700000000.123456) vcan0 100#0102030405060708     classic frame
+//   (1700000000.123456) vcan0 123##1<payload>          CAN FD (## then the flags nibble)
+//   (1700000000.123456) vcan0 123#R                    remote request
+// The config's [can] frame map says what the frames mean. The controller's frames (currents,
+// power fail/restore) become recorded inputs; the emulator's sensor frames become the record to
+// compare with. Time zero is the emulator's first sensor frame (its step-0 sample, sent at the
+// start of the run); the sample of step k S (S steps per period of T) leaves at k T. A controller
+// frame that arrives between n T and (n+1) T is applied from step n S, as the live loop polls it
+// at the next deadline, where it computes the period from step n S. Receive times on a bus are not
+// the live loop's exact poll times, so a replay of a candump log agrees with the live run up to
+// that timing (about a period), not bit for bit: the comparison reports the differences and does
+// not fail on them.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "controller_if/run_record.hpp"
+#include "io/config_can.hpp"
+#include "rt_core/model.hpp"
+
+namespace ambdrop {
+
+struct CandumpRecord {
+  RecordedRun run;
+  std::vector<RecordedSensors> sensors;  ///< the emulator's sensor frames, as decoded
+  std::int64_t frames = 0;               ///< frames read
+  std::int64_t controller_frames = 0;    ///< currents and trigger frames applied
+  std::int64_t unknown_frames = 0;       ///< ids the frame map does not know (or malformed)
+  std::vector<std::string> warnings;     ///< malformed lines (first few, with line numbers)
+  std::int64_t malformed_lines = 0;
+};
+
+/// True if the file looks like a candump -l log (its first line starts with "(").
+bool IsCandumpLog(const std::filesystem::path& path);
+
+/// Reads the log. Throws std::runtime_error if the file cannot be read or holds no sensor frame
+/// of the map (no time zero); malformed lines are counted and skipped.
+CandumpRecord ReadCandumpRecord(const std::filesystem::path& path, const Model& model,
+                                const CanConfig& can);
+
+}  // namespace ambdrop
