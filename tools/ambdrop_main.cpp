@@ -10,6 +10,7 @@
 #include "tools/hil_command.hpp"
 #include "tools/modes_command.hpp"
 #include "tools/replay_command.hpp"
+#include "tools/validate_command.hpp"
 #include "tools/sim_command.hpp"
 
 #ifndef AMBDROP_VERSION
@@ -76,6 +77,22 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   AddSetOption(replay_command, &replay.overrides);
   replay_command->add_flag("--quiet,-q", replay.quiet, "No report on stdout");
+
+  ambdrop::ValidateOptions validate;
+  CLI::App* validate_command = app.add_subcommand(
+      "validate", "Run every seed paper's case and compare with its published numbers");
+  validate_command->add_option("--out", validate.out_dir, "Output directory (validate.json)")
+      ->type_name("DIR")
+      ->capture_default_str();
+  validate_command->add_option("--configs", validate.configs_dir, "The seed rigs' config folder")
+      ->type_name("DIR")
+      ->capture_default_str();
+  validate_command->add_option("--case", validate.cases, "Run only this case (repeatable)")
+      ->type_name("NAME");
+  validate_command->add_flag("--allow-known-failures", validate.allow_known_failures,
+                             "Checks marked as known failures (open issues) do not fail the exit "
+                             "code; they are still reported");
+  validate_command->add_flag("--quiet,-q", validate.quiet, "No table on stdout");
 
   ambdrop::ModesOptions modes;
   double speed_rpm = 0.0;
@@ -185,6 +202,7 @@ int main(int argc, char** argv) {
     if (sim_command->parsed()) return ambdrop::RunSimCommand(sim);
     if (hil_command->parsed()) return ambdrop::RunHilCommand(hil);
     if (replay_command->parsed()) return ambdrop::RunReplayCommand(replay);
+    if (validate_command->parsed()) return ambdrop::RunValidateCommand(validate);
     if (modes_command->parsed()) {
       if (speed_option->count() > 0) modes.speed_rpm = speed_rpm;
       return ambdrop::RunModesCommand(modes);
