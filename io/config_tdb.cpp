@@ -1,6 +1,8 @@
 #include <climits>
 #include <numbers>
 
+#include "io/config_ball_bearing_tdb.hpp"
+#include "io/config_catcher_bearing.hpp"
 #include "io/config_readers.hpp"
 #include "rt_core/limits.hpp"
 
@@ -33,7 +35,8 @@ HuntCrossleyParams ReadHuntCrossley(const TableReader& four_dof, std::string_vie
 BallBearingParams ReadBallBearing(const TableReader& four_dof) {
   const TableReader table = four_dof.Table("bearing");
   table.AllowOnly({"balls", "contact_angle_rad", "inner_contact_stiffness_N_per_m1_5",
-                   "outer_contact_stiffness_N_per_m1_5", "operating_load_N", "damping_factor"});
+                   "outer_contact_stiffness_N_per_m1_5", "operating_load_N", "damping_factor",
+                   "quadratic_stiffness_N_per_m2"});
   BallBearingParams params;
   if (!table.Has("balls")) table.FailMissing("balls", "an integer >= 1");
   params.balls = table.Integer("balls", 1, INT_MAX, 0);
@@ -45,6 +48,10 @@ BallBearingParams ReadBallBearing(const TableReader& four_dof) {
       table.Number("outer_contact_stiffness_N_per_m1_5", Positive());
   params.operating_load_N = table.Number("operating_load_N", Positive());
   params.damping_factor = table.Number("damping_factor", NonNegative());
+  // Jarroux 2016 (seed 001), Sec. 2: kq of the quadratic law; absent, the secant through the
+  // Hertz operating point.
+  params.quadratic_stiffness_N_per_m2 =
+      table.Number("quadratic_stiffness_N_per_m2", Positive(), 0.0);
   return params;
 }
 
@@ -72,13 +79,26 @@ DahlRibbonParams ReadDahl(const TableReader& table) {
   return params;
 }
 
+// Cross-coupled ribbon, Jarroux 2016 (seed 001) Eq. (1).
+CrossCoupledRibbonParams ReadCrossCoupled(const TableReader& table) {
+  table.AllowOnly(
+      {"stiffness_N_per_m", "cross_coupling", "damping_N_s_per_m", "sign_regularisation_s_per_m"});
+  CrossCoupledRibbonParams params;
+  params.stiffness_N_per_m = table.Number("stiffness_N_per_m", Positive());
+  params.cross_coupling = table.Number("cross_coupling", NonNegative());
+  params.damping_N_s_per_m = table.Number("damping_N_s_per_m", NonNegative());
+  params.sign_regularisation_s_per_m =
+      table.Number("sign_regularisation_s_per_m", Positive(), params.sign_regularisation_s_per_m);
+  return params;
+}
+
 // The ribbon the switch selects must be there; the other one, if given, is checked too, so
 // that `--set tdb.X.four_dof.ribbon=...` can switch between two complete descriptions.
 FourDofParams ReadFourDof(const TableReader& tdb, const GravityParams& gravity) {
   const TableReader table = tdb.Table("four_dof");
   table.AllowOnly({"inner_race_mass_kg", "outer_race_mass_kg", "ribbon_clearance_m", "bearing_law",
-                   "ribbon", "inner_contact", "housing_contact", "bearing", "kelvin_voigt",
-                   "dahl"});
+                   "ribbon", "inner_contact", "housing_contact", "bearing", "kelvin_voigt", "dahl",
+                   "cross_coupled"});
   FourDofParams params;
   params.inner_race_mass_kg = table.Number("inner_race_mass_kg", Positive());
   params.outer_race_mass_kg = table.Number("outer_race_mass_kg", Positive());
@@ -87,20 +107,21 @@ FourDofParams ReadFourDof(const TableReader& tdb, const GravityParams& gravity) 
   params.inner_contact = ReadHuntCrossley(table, "inner_contact");
   params.housing_contact = ReadHuntCrossley(table, "housing_contact");
   params.bearing = ReadBallBearing(table);
-  params.bearing.law = table.Choice("bearing_law", {"hertz_linearised", "hertz"}) == "hertz"
-                           ? BearingLaw::kHertz
-                           : BearingLaw::kHertzLinearised;
-  params.ribbon = table.Choice("ribbon", {"kelvin_voigt", "dahl"}) == "dahl"
-                      ? RibbonLaw::kDahl
-                      : RibbonLaw::kKelvinVoigt;
-  if (params.ribbon == RibbonLaw::kKelvinVoigt) {
-    params.kelvin_voigt = ReadKelvinVoigt(table.Table("kelvin_voigt"));
-    if (const auto dahl = table.OptionalTable("dahl")) params.dahl = ReadDahl(*dahl);
-  } else {
-    params.dahl = ReadDahl(table.Table("dahl"));
-    if (const auto kv = table.OptionalTable("kelvin_voigt"))
-      params.kelvin_voigt = ReadKelvinVoigt(*kv);
-  }
+  const std::string bearing_law =
+      table.Choice("bearing_law", {"hertz_linearised", "hertz", "quadratic"});
+  params.bearing.law = bearing_law == "hertz"       ? BearingLaw::kHertz
+                       : bearing_law == "quadratic" ? BearingLaw::kQuadratic
+                                                    : BearingLaw::kHertzLinearised;
+  const std::string ribbon = table.Choice("ribbon", {"kelvin_voigt", "dahl", "cross_coupled"});
+  params.ribbon = ribbon == "dahl"            ? RibbonLaw::kDahl
+                  : ribbon == "cross_coupled" ? RibbonLaw::kCrossCoupled
+                                              : RibbonLaw::kKelvinVoigt;
+  const auto ribbon_table = [&](std::string_view key) {
+    return ribbon == key ? std::optional<TableReader>(table.Table(key)) : table.OptionalTable(key);
+  };
+  if (const auto kv = ribbon_table("kelvin_voigt")) params.kelvin_voigt = ReadKelvinVoigt(*kv);
+  if (const auto dahl = ribbon_table("dahl")) params.dahl = ReadDahl(*dahl);
+  if (const auto cc = ribbon_table("cross_coupled")) params.cross_coupled = ReadCrossCoupled(*cc);
   return params;
 }
 
@@ -153,7 +174,7 @@ MisalignmentParams ReadMisalignment(const TableReader& tdb) {
 TdbParams ReadTdb(const std::string& name, const TableReader& table, const AxialRange& position,
                   const GravityParams& gravity) {
   table.AllowOnly({"position_m", "journal_radius_m", "clearance_m", "model", "contact_law",
-                   "friction", "spin", "misalignment", "four_dof"});
+                   "friction", "spin", "misalignment", "four_dof", "ball_bearing_tdb", "catcher_bearing"});
   TdbParams tdb;
   tdb.name = name;
   tdb.position_m = ReadAxialPosition(table, position);
@@ -161,14 +182,27 @@ TdbParams ReadTdb(const std::string& name, const TableReader& table, const Axial
   tdb.clearance_m = table.Number("clearance_m", Positive());
   // The selected model's table is required; the other, if given, is checked too, so that
   // `--set tdb.X.model=...` can switch between two complete descriptions.
-  tdb.model = table.Choice("model", {"contact_law", "four_dof"}, "contact_law") == "four_dof"
-                  ? TdbModelKind::kFourDof
-                  : TdbModelKind::kContactLaw;
+  const std::string model =
+      table.Choice("model", {"contact_law", "four_dof", "ball_bearing_tdb", "catcher_bearing"},
+                   "contact_law");
+  tdb.model = model == "four_dof" ? TdbModelKind::kFourDof : TdbModelKind::kContactLaw;
+  if (model == "ball_bearing_tdb") tdb.model = TdbModelKind::kBallBearing;
+  if (model == "catcher_bearing") tdb.model = TdbModelKind::kCatcherBearing;
   if (tdb.model == TdbModelKind::kContactLaw || table.Has("contact_law")) {
     tdb.contact_law = ReadContactLaw(table);
   }
   if (tdb.model == TdbModelKind::kFourDof || table.Has("four_dof")) {
     tdb.four_dof = ReadFourDof(table, gravity);
+  }
+  if (tdb.model == TdbModelKind::kBallBearing || table.Has("ball_bearing_tdb")) {
+    tdb.ball_bearing = ReadBallBearingTdb(table, gravity);
+  }
+  if (tdb.model == TdbModelKind::kCatcherBearing || table.Has("catcher_bearing")) {
+    tdb.catcher = ReadCatcherBearing(table, gravity);
+  }
+  if (tdb.model == TdbModelKind::kCatcherBearing) {
+    table.Reject("spin", "no [spin] table with model = \"catcher_bearing\" (its races' inertias "
+                         "and friction moments are in [catcher_bearing])");
   }
   tdb.friction = ReadFriction(table);
   tdb.spin = ReadSpin(table);

@@ -19,7 +19,7 @@ double RadialLoadIntegral() {
 BallBearingCoefficients BallBearingFromHertz(const BallBearingParams& p) {
   if (p.balls <= 0 || !(p.inner_contact_stiffness_N_per_m1_5 > 0.0) ||
       !(p.outer_contact_stiffness_N_per_m1_5 > 0.0) || !(p.operating_load_N > 0.0) ||
-      !(std::cos(p.contact_angle_rad) > 0.0)) {
+      !(std::cos(p.contact_angle_rad) > 0.0) || !(p.quadratic_stiffness_N_per_m2 >= 0.0)) {
     throw std::invalid_argument(
         "ball bearing: balls, contact stiffnesses, operating load and cos(contact angle) must be "
         "positive");
@@ -37,6 +37,11 @@ BallBearingCoefficients BallBearingFromHertz(const BallBearingParams& p) {
   c.stiffness_N_per_m = 1.5 * c.radial_constant_N_per_m1_5 * std::sqrt(ur0);
   // Jarroux 2019, Eq. (8): cbrg / kbrg * 1e5 = damping_factor.
   c.damping_N_s_per_m = p.damping_factor * 1e-5 * c.stiffness_N_per_m;
+  // Jarroux 2016 (seed 001), Sec. 2: quadratic law Fr = kq ur^2; by default the secant through
+  // the Hertz operating point (F0 at ur0).
+  c.quadratic_constant_N_per_m2 = p.quadratic_stiffness_N_per_m2 > 0.0
+                                      ? p.quadratic_stiffness_N_per_m2
+                                      : p.operating_load_N / (ur0 * ur0);
   return c;
 }
 

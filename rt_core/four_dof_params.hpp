@@ -14,6 +14,7 @@ struct HuntCrossleyParams {
 enum class BearingLaw {
   kHertzLinearised,  ///< kbrg, cbrg linearised at an operating load (Jarroux 2019 Sec. 3.1)
   kHertz,            ///< Fr = K ur^(3/2) (Jarroux 2019 Eq. (5), zero internal clearance)
+  kQuadratic,        ///< Fr = kq ur^2 (Jarroux 2016 (seed 001), Sec. 2: "a quadratic law")
 };
 
 /// Ball bearing between the races from Hertz theory, Jarroux 2019 Eq. (5)-(8) (Harris).
@@ -25,11 +26,15 @@ struct BallBearingParams {
   double outer_contact_stiffness_N_per_m1_5 = 0.0;  ///< k_or, ball / outer race, Eq. (7)
   double operating_load_N = 0.0;                    ///< where kbrg is linearised
   double damping_factor = 1.0;                      ///< cbrg / kbrg * 1e5, Eq. (8): [0.25, 2.5]
+  /// kq (N/m^2) of the quadratic law; 0: the secant through the Hertz operating point,
+  /// kq = F0 / ur0^2, so that both laws deflect alike under the operating load.
+  double quadratic_stiffness_N_per_m2 = 0.0;
 };
 
 enum class RibbonLaw {
-  kKelvinVoigt,  ///< Jarroux 2019 Eq. (4), model #2
-  kDahl,         ///< generalized Dahl, Jarroux 2019 Eq. (1)-(3), model #3
+  kKelvinVoigt,   ///< Jarroux 2019 Eq. (4), model #2
+  kDahl,          ///< generalized Dahl, Jarroux 2019 Eq. (1)-(3), model #3
+  kCrossCoupled,  ///< cross-coupled stiffness against whirl, Jarroux 2016 (seed 001) Eq. (1)
 };
 
 /// Kelvin-Voigt ribbon, Jarroux 2019 Eq. (4): frd = crd u' + krd u.
@@ -54,6 +59,18 @@ struct DahlRibbonParams {
   double lower_hardening_rate_per_m = 0.0;  ///< d
 };
 
+/// Corrugated ribbon damper with a cross-coupled stiffness that opposes the outer race's whirl,
+/// Jarroux 2016 (seed 001) Eq. (1), on the outer-race position (x, y) and velocity:
+///   f = -kcrd [[1, -eta sgn(v)], [eta sgn(v), 1]] (x, y) - ccrd (x', y'),
+/// v = (x y' - y x') / |(x, y)| the outer race's whirl speed (> 0 along +spin), and sgn as an
+/// arctan law, sgn(v) ~ (2/pi) atan(vref v).
+struct CrossCoupledRibbonParams {
+  double stiffness_N_per_m = 0.0;              ///< kcrd
+  double cross_coupling = 0.0;                 ///< eta
+  double damping_N_s_per_m = 0.0;              ///< ccrd
+  double sign_regularisation_s_per_m = 100.0;  ///< vref of the arctan sign
+};
+
 /// 4-DOF TDB: journal / inner race (Hunt-Crossley), inner race (mass, x, y), ball bearing,
 /// outer race (mass, x, y), ribbon and outer race / housing (Hunt-Crossley once the ribbon's
 /// radial clearance is used up).
@@ -68,6 +85,7 @@ struct FourDofParams {
   RibbonLaw ribbon = RibbonLaw::kKelvinVoigt;
   KelvinVoigtRibbonParams kelvin_voigt;
   DahlRibbonParams dahl;
+  CrossCoupledRibbonParams cross_coupled;
 };
 
 }  // namespace ambdrop

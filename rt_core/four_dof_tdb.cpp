@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "rt_core/hunt_crossley.hpp"
+#include "rt_core/ribbon_cross_coupled.hpp"
 #include "rt_core/ribbon_dahl.hpp"
 #include "rt_core/ribbon_kelvin_voigt.hpp"
 #include "rt_core/tdb_common.hpp"
@@ -19,6 +20,10 @@ FourDofTdb::FourDofTdb(const TdbParams& params)
   if (!(f.inner_race_mass_kg > 0.0) || !(f.outer_race_mass_kg > 0.0)) {
     throw std::invalid_argument("tdb '" + params.name + "': race masses must be positive");
   }
+  if (f.ribbon == RibbonLaw::kCrossCoupled && !(f.cross_coupled.stiffness_N_per_m > 0.0)) {
+    throw std::invalid_argument("tdb '" + params.name +
+                                "': the cross-coupled ribbon's stiffness must be positive");
+  }
 }
 
 void FourDofTdb::InitialState(double* s) const noexcept {
@@ -29,6 +34,9 @@ void FourDofTdb::InitialState(double* s) const noexcept {
   const double inner_weight_N = f.inner_race_mass_kg * f.gravity_y_m_s2;
   if (f.ribbon == RibbonLaw::kKelvinVoigt) {
     s[kOuterY] = races_weight_N / f.kelvin_voigt.stiffness_N_per_m;  // Eq. (4), u' = 0
+  } else if (f.ribbon == RibbonLaw::kCrossCoupled) {
+    // Jarroux 2016 (seed 001), Eq. (1) at rest: no whirl, so no cross-coupling.
+    s[kOuterY] = races_weight_N / f.cross_coupled.stiffness_N_per_m;
   } else {
     s[kRibbonFy] =
         std::clamp(races_weight_N, DahlLowerEnvelope(f.dahl, 0.0), DahlUpperEnvelope(f.dahl, 0.0));
@@ -38,6 +46,10 @@ void FourDofTdb::InitialState(double* s) const noexcept {
     // Eq. (5): K |d|^(3/2) = |W|.
     const double ratio = std::abs(inner_weight_N) / bearing_.radial_constant_N_per_m1_5;
     bearing_deflection_m = std::copysign(std::cbrt(ratio * ratio), inner_weight_N);
+  } else if (f.bearing.law == BearingLaw::kQuadratic) {
+    // Jarroux 2016 (seed 001), Sec. 2: kq d^2 = |W|.
+    bearing_deflection_m = std::copysign(
+        std::sqrt(std::abs(inner_weight_N) / bearing_.quadratic_constant_N_per_m2), inner_weight_N);
   }
   s[kInnerY] = s[kOuterY] + bearing_deflection_m;
 }
@@ -114,9 +126,14 @@ void FourDofTdb::Evaluate(const JournalMotion& j, const double* s, double* rate,
       rate[kRibbonFx] = DahlRibbonForceRate(f.dahl, ox, ovx, ribbon_x);
       rate[kRibbonFy] = DahlRibbonForceRate(f.dahl, oy, ovy, ribbon_y);
       break;
+    case RibbonLaw::kCrossCoupled:
+      // Jarroux 2016 (seed 001), Eq. (1)
+      CrossCoupledRibbonForce(f.cross_coupled, ox, oy, ovx, ovy, &ribbon_x, &ribbon_y);
+      break;
   }
 
-  // Outer race / housing: Hunt-Crossley, Eq. (10), beyond the ribbon clearance.
+  // Outer race / housing: Hunt-Crossley, Eq. (10), beyond the ribbon clearance (Jarroux 2016
+  // (seed 001), Sec. 2: "modeled as the rotor to inner race normal contact force").
   double housing_x = 0.0, housing_y = 0.0;  // on the outer race
   const double outer_radius = std::sqrt(ox * ox + oy * oy);
   const double uh = outer_radius - f.ribbon_clearance_m;

@@ -10,11 +10,12 @@ namespace ambdrop {
 ///     clearance; regularised Coulomb friction, Eq. (11), on the slip of the journal surface over
 ///     the inner-race surface (plus the optional viscous force on the relative whirl speed);
 ///   - inner race / outer race: the ball bearing, Hertz Eq. (5)-(7) linearised to kbrg or
-///     nonlinear, with cbrg per Eq. (8);
+///     nonlinear, or the quadratic law of Jarroux 2016 (seed 001, Sec. 2), with cbrg per Eq. (8);
 ///   - outer race / housing: the ribbon, Kelvin-Voigt Eq. (4) (model #2) or generalized Dahl
 ///     Eq. (1)-(3) (model #3), on each lateral axis (the ribbon was identified along one axis,
-///     Sec. 2), and Hunt-Crossley, Eq. (10), once the outer race has used up the ribbon's radial
-///     clearance;
+///     Sec. 2), or the cross-coupled ribbon against the outer race's whirl (Jarroux 2016, seed
+///     001, Eq. (1)); and Hunt-Crossley, Eq. (10), once the outer race has used up the ribbon's
+///     radial clearance;
 ///   - race spin, Eq. (9), with the Palmgren torque on the bearing load.
 /// The races carry their weight; misalignment moves the housing centre. Race positions are
 /// relative to the housing centre.

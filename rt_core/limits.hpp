@@ -4,7 +4,7 @@
 namespace ambdrop {
 inline constexpr int kMaxModes = 40;            ///< generalized rotor coordinates
 inline constexpr int kMaxTdbs = 4;              ///< touchdown bearings
-inline constexpr int kMaxTdbStates = 12;        ///< internal states of one touchdown bearing
+inline constexpr int kMaxTdbStates = 16;        ///< internal states of one touchdown bearing
 inline constexpr int kMaxAmbs = 4;              ///< radial magnetic bearings
 inline constexpr int kMaxSensors = 8;           ///< displacement sensor planes
 inline constexpr int kMaxUnbalances = 8;        ///< unbalance masses

@@ -73,7 +73,7 @@ TEST(ConfigFourDof, ErrorsNameFileLineKeyAndExpectation) {
                         "([tdb.de.four_dof.dahl])"));
   EXPECT_THAT(ErrorOf(model2, {"tdb.de.four_dof.bearing_law=\"harris\""}),
               HasSubstr("key 'tdb.de.four_dof.bearing_law': expected one of "
-                        "\"hertz_linearised\", \"hertz\", found \"harris\""));
+                        "\"hertz_linearised\", \"hertz\", \"quadratic\", found \"harris\""));
   EXPECT_THAT(ErrorOf(model2, {"tdb.de.four_dof.bearing.balls=0"}),
               HasSubstr("key 'tdb.de.four_dof.bearing.balls': expected an integer >= 1"));
   EXPECT_THAT(ErrorOf(model2, {"tdb.de.four_dof.inner_contact.exponent=3.0"}),

@@ -1,6 +1,7 @@
 #include "tools/run_summary.hpp"
 
 #include <cmath>
+#include <vector>
 
 namespace ambdrop {
 
@@ -21,6 +22,7 @@ RunSummary::RunSummary(const ModelParams& params)
     TdbSummary summary;
     summary.name = tdb.name;
     tdbs_.push_back(summary);
+    orbits_.emplace_back(kOrbitCapacity);
   }
 }
 
@@ -55,9 +57,33 @@ void RunSummary::Add(const Observation& observation) {
       summary.spinup_time_s = t - trigger_time_s_;
     }
   }
+  // The journal orbit after the trigger, for the whirl classification.
+  if (after_trigger && !tdbs_.empty()) {
+    for (std::size_t i = 0; i < tdbs_.size(); ++i) {
+      orbits_[i][orbit_next_] = {t, observation.tdb_journal_xy_m[i][0] - geometry_[i].centre_x_m,
+                                 observation.tdb_journal_xy_m[i][1] - geometry_[i].centre_y_m,
+                                 spin};
+    }
+    orbit_next_ = (orbit_next_ + 1) % kOrbitCapacity;
+    if (orbit_count_ < kOrbitCapacity) ++orbit_count_;
+  }
   ++observations_;
   last_time_s_ = t;
   last_spin_speed_rad_s_ = spin;
+}
+
+WhirlClassification RunSummary::Whirl(std::size_t index) const {
+  if (orbit_count_ == 0 || !last_time_s_) return {};
+  // After the transient: the second half of the time since the trigger.
+  const double from_s = trigger_time_s_ + 0.5 * (*last_time_s_ - trigger_time_s_);
+  std::vector<OrbitSample> window;
+  window.reserve(orbit_count_);
+  const std::size_t oldest = (orbit_next_ + kOrbitCapacity - orbit_count_) % kOrbitCapacity;
+  for (std::size_t k = 0; k < orbit_count_; ++k) {
+    const OrbitSample& sample = orbits_[index][(oldest + k) % kOrbitCapacity];
+    if (sample.time_s >= from_s) window.push_back(sample);
+  }
+  return ClassifyWhirl(window, geometry_[index].clearance_m);
 }
 
 }  // namespace ambdrop

@@ -6,6 +6,7 @@
 
 #include "rt_core/model_params.hpp"
 #include "rt_core/simulator.hpp"
+#include "tools/whirl_classifier.hpp"
 
 namespace ambdrop {
 
@@ -33,6 +34,13 @@ class RunSummary {
 
   void Add(const Observation& observation);
 
+  /// Journal samples kept per TDB for the whirl classification (the latest ones, a ring).
+  static constexpr std::size_t kOrbitCapacity = std::size_t{1} << 15;
+  /// Whirl classification of TDB `index` after the transient (Jarroux 2016, seed 001, Sec. 3):
+  /// ClassifyWhirl over the second half of the time since the trigger, or over as much of it as
+  /// the ring still holds.
+  WhirlClassification Whirl(std::size_t index) const;
+
   const std::vector<TdbSummary>& tdbs() const noexcept { return tdbs_; }
   std::int64_t observations() const noexcept { return observations_; }
   /// Time from which spin-up is measured: the trigger, or 0 when no trigger is scheduled.
@@ -51,6 +59,9 @@ class RunSummary {
   };
 
   std::vector<TdbGeometry> geometry_;
+  std::vector<std::vector<OrbitSample>> orbits_;  ///< per TDB, a ring of kOrbitCapacity
+  std::size_t orbit_next_ = 0;                    ///< ring slot of the next sample
+  std::size_t orbit_count_ = 0;                   ///< samples held (<= kOrbitCapacity)
   std::vector<TdbSummary> tdbs_;
   double trigger_time_s_ = 0.0;
   std::int64_t observations_ = 0;
