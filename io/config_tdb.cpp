@@ -174,7 +174,8 @@ MisalignmentParams ReadMisalignment(const TableReader& tdb) {
 TdbParams ReadTdb(const std::string& name, const TableReader& table, const AxialRange& position,
                   const GravityParams& gravity) {
   table.AllowOnly({"position_m", "journal_radius_m", "clearance_m", "model", "contact_law",
-                   "friction", "spin", "misalignment", "four_dof", "ball_bearing_tdb", "catcher_bearing"});
+                   "friction", "spin", "misalignment", "four_dof", "ball_bearing_tdb",
+                   "catcher_bearing"});
   TdbParams tdb;
   tdb.name = name;
   tdb.position_m = ReadAxialPosition(table, position);
@@ -182,9 +183,8 @@ TdbParams ReadTdb(const std::string& name, const TableReader& table, const Axial
   tdb.clearance_m = table.Number("clearance_m", Positive());
   // The selected model's table is required; the other, if given, is checked too, so that
   // `--set tdb.X.model=...` can switch between two complete descriptions.
-  const std::string model =
-      table.Choice("model", {"contact_law", "four_dof", "ball_bearing_tdb", "catcher_bearing"},
-                   "contact_law");
+  const std::string model = table.Choice(
+      "model", {"contact_law", "four_dof", "ball_bearing_tdb", "catcher_bearing"}, "contact_law");
   tdb.model = model == "four_dof" ? TdbModelKind::kFourDof : TdbModelKind::kContactLaw;
   if (model == "ball_bearing_tdb") tdb.model = TdbModelKind::kBallBearing;
   if (model == "catcher_bearing") tdb.model = TdbModelKind::kCatcherBearing;
@@ -201,8 +201,9 @@ TdbParams ReadTdb(const std::string& name, const TableReader& table, const Axial
     tdb.catcher = ReadCatcherBearing(table, gravity);
   }
   if (tdb.model == TdbModelKind::kCatcherBearing) {
-    table.Reject("spin", "no [spin] table with model = \"catcher_bearing\" (its races' inertias "
-                         "and friction moments are in [catcher_bearing])");
+    table.Reject("spin",
+                 "no [spin] table with model = \"catcher_bearing\" (its races' inertias "
+                 "and friction moments are in [catcher_bearing])");
   }
   tdb.friction = ReadFriction(table);
   tdb.spin = ReadSpin(table);

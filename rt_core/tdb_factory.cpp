@@ -2,8 +2,8 @@
 
 #include <stdexcept>
 
-#include "rt_core/catcher_bearing_tdb.hpp"
 #include "rt_core/ball_bearing_tdb.hpp"
+#include "rt_core/catcher_bearing_tdb.hpp"
 #include "rt_core/contact_law_tdb.hpp"
 #include "rt_core/four_dof_tdb.hpp"
 

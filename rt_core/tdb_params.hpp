@@ -1,8 +1,8 @@
 #pragma once
 #include <string>
 
-#include "rt_core/catcher_bearing_params.hpp"
 #include "rt_core/ball_bearing_tdb_params.hpp"
+#include "rt_core/catcher_bearing_params.hpp"
 #include "rt_core/four_dof_params.hpp"
 
 namespace ambdrop {
@@ -49,9 +49,9 @@ struct MisalignmentParams {
 };
 
 enum class TdbModelKind {
-  kContactLaw,  ///< model #1, Eq. (12)
-  kFourDof,     ///< models #2 (Kelvin-Voigt ribbon) and #3 (Dahl ribbon), Sec. 4.1
-  kBallBearing,  ///< Chen 2019 (seed 002): line contact, discrete balls, optional Ks, Cs
+  kContactLaw,      ///< model #1, Eq. (12)
+  kFourDof,         ///< models #2 (Kelvin-Voigt ribbon) and #3 (Dahl ribbon), Sec. 4.1
+  kBallBearing,     ///< Chen 2019 (seed 002): line contact, discrete balls, optional Ks, Cs
   kCatcherBearing,  ///< seed 003 SDCB/DDCB, seed 004 metal rubber ring (CatcherBearingTdb)
 };
 
@@ -64,7 +64,7 @@ struct TdbParams {
   ContactLawParams contact_law;
   FourDofParams four_dof;
   BallBearingTdbParams ball_bearing;  ///< model = "ball_bearing_tdb"
-  CatcherBearingParams catcher;  ///< model = kCatcherBearing
+  CatcherBearingParams catcher;       ///< model = kCatcherBearing
   FrictionParams friction;
   TdbSpinParams spin;
   MisalignmentParams misalignment;
