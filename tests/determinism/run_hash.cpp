@@ -11,16 +11,13 @@
 
 #include "controller_if/offline_run.hpp"
 #include "io/config_loader.hpp"
+#include "io/event_log.hpp"
 
 namespace {
 
 std::uint64_t Mix(std::uint64_t hash, const void* data, std::size_t size) {
-  const auto* bytes = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < size; ++i) {
-    hash ^= bytes[i];
-    hash *= 1099511628211ULL;
-  }
-  return hash;
+  return ambdrop::Fnv1a64(
+      std::span<const std::uint8_t>(static_cast<const std::uint8_t*>(data), size), hash);
 }
 
 }  // namespace
@@ -36,7 +33,7 @@ int main(int argc, char** argv) {
       config,
       {"simulation.duration_s=0.15", "trigger.time_s=0.05", "simulation.output_interval_s=5e-6"});
   const ambdrop::Model model = ambdrop::BuildModel(loaded.params);
-  std::uint64_t hash = 14695981039346656037ULL;
+  std::uint64_t hash = ambdrop::kFnv1a64Basis;
   std::int64_t observations = 0;
   const ambdrop::OfflineRunResult result =
       ambdrop::RunOffline(model, [&](const ambdrop::Observation& o) {
