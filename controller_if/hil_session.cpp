@@ -37,9 +37,9 @@ HilSession::HilSession(const Model& model, ControllerLink* link,
           std::max<std::int64_t>(1, std::llround(model.params.simulation.output_interval_s /
                                                  model.params.simulation.step_s))),
       recorder_(options.recorder) {
-  // Levitated on the currents that carry the static load, as `ambdrop sim` starts; they stay
-  // applied until the controller's first currents arrive.
-  input_ = StaticLoadInput(model);
+  initial_input_ =
+      options.initial_input != nullptr ? *options.initial_input : StaticLoadInput(model);
+  input_ = initial_input_;
   state_ = sim_.InitialState(input_);
   for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
     latest_.current_A[a] = input_.amb[a].current_A;
@@ -66,7 +66,7 @@ void HilSession::Start(std::int64_t now_ns) noexcept {
   watchdog_.Start(now_ns);
   if (recorder_ != nullptr) {
     RecordedStart start;
-    start.equilibrium_input = StaticLoadInput(model_);
+    start.equilibrium_input = initial_input_;
     start.loop_current_A = latest_.current_A;
     recorder_->OnStart(start);
   }

@@ -17,6 +17,10 @@ struct HilOptions {
   double watchdog_timeout_s = 5e-3;  ///< controller silence that trips the watchdog
   SilenceAction silence_action = SilenceAction::kHold;
   RunRecorder* recorder = nullptr;  ///< receives every input, power event, sample and state
+  /// The currents the rotor starts levitated on (at their powered equilibrium) and that stay
+  /// applied until the controller's first currents arrive; null: those that carry the static
+  /// load. A profile-driven rig starts on its profile's first currents, as `ambdrop sim` does.
+  const ControlInput* initial_input = nullptr;
 };
 
 /// Counters of a HIL run (read after it, or from another thread as a snapshot).
@@ -90,6 +94,7 @@ class HilSession {
   std::int64_t output_every_;
   State state_;
   ControlInput input_;
+  ControlInput initial_input_;
   CurrentsMessage latest_;
   Observation obs_;
   SensorReadings readings_;

@@ -29,9 +29,7 @@ OfflineRunResult RunOffline(const Model& model,
     controller.emplace(model, static_cast<double>(substeps) * dt);
     controller->Initial(&input);
   } else {
-    for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
-      input.amb[a].current_A = CurrentAt(model.params.ambs[a].current_profile, 0.0);
-    }
+    input = ProfileStartInput(model);
   }
   PowerState power(model);
   const PowerEvent failure = ScheduledFailure(model);

@@ -10,8 +10,8 @@
 #include "tools/hil_command.hpp"
 #include "tools/modes_command.hpp"
 #include "tools/replay_command.hpp"
-#include "tools/validate_command.hpp"
 #include "tools/sim_command.hpp"
+#include "tools/validate_command.hpp"
 
 #ifndef AMBDROP_VERSION
 #define AMBDROP_VERSION "unknown"
@@ -77,6 +77,29 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   AddSetOption(replay_command, &replay.overrides);
   replay_command->add_flag("--quiet,-q", replay.quiet, "No report on stdout");
+  CLI::Option* export_profile =
+      replay_command
+          ->add_option("--export-profile", replay.export_profile_path,
+                       "Instead of replaying, write the recorded coil currents as a rig config "
+                       "driven by current profiles ([controller] kind = \"none\"), for "
+                       "`ambdrop sim` or a scenario's base")
+          ->type_name("FILE.toml");
+  replay_command
+      ->add_option("--profile-points", replay.profile.max_points,
+                   "At most this many points per AMB profile")
+      ->check(CLI::Range(2, 1024))
+      ->needs(export_profile)
+      ->capture_default_str();
+  replay_command
+      ->add_option("--profile-from", replay.profile.from_s,
+                   "Export from this record time (s); the profile starts there at 0 s")
+      ->check(CLI::NonNegativeNumber)
+      ->needs(export_profile)
+      ->capture_default_str();
+  replay_command
+      ->add_option("--profile-to", replay.profile.to_s, "Export up to this record time (s)")
+      ->check(CLI::PositiveNumber)
+      ->needs(export_profile);
 
   ambdrop::ValidateOptions validate;
   CLI::App* validate_command = app.add_subcommand(

@@ -14,6 +14,7 @@
 #include "rt_core/model.hpp"
 #include "tools/exit_codes.hpp"
 #include "tools/record/candump_record.hpp"
+#include "tools/record/profile_export.hpp"
 #include "tools/record/run_record_reader.hpp"
 #include "tools/record/sensor_diff.hpp"
 #include "tools/run_summary.hpp"
@@ -27,6 +28,32 @@ namespace fs = std::filesystem;
 const char* StatusText(const ReplayResult& result) {
   if (result.watchdog_stop) return "watchdog_stop";
   return result.status == StepStatus::kOk ? "ok" : "diverged";
+}
+
+int ExportProfile(const RunRecordFile& record, const ReplayOptions& options) {
+  ProfileExport exported;
+  try {
+    exported = ExportCurrentProfile(record, options.record_path, options.profile);
+  } catch (const ConfigError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitConfig;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitError;
+  }
+  try {
+    WriteTextFile(options.export_profile_path, exported.toml);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitError;
+  }
+  for (const std::string& n : exported.notes) fmt::print(stderr, "note: {}\n", n);
+  if (!options.quiet) {
+    fmt::print("{}: {} recorded current samples as {} profile points per AMB (within {:.3g} A)\n",
+               options.export_profile_path, exported.recorded_samples, exported.points,
+               exported.max_error_A);
+  }
+  return kExitOk;
 }
 
 }  // namespace
@@ -50,6 +77,13 @@ int RunReplayCommand(const ReplayOptions& options) {
     }
   }
   for (const std::string& w : record.warnings) fmt::print(stderr, "warning: {}\n", w);
+  if (!options.export_profile_path.empty()) {
+    if (candump) {
+      fmt::print(stderr, "error: --export-profile takes an ambdrop record, not a candump log\n");
+      return kExitUsage;
+    }
+    return ExportProfile(record, options);
+  }
 
   const bool recorded_config = !candump && options.config_path.empty() && options.overrides.empty();
   LoadedConfig config;

@@ -1,6 +1,9 @@
 #pragma once
+#include <cstddef>
 #include <string>
 #include <vector>
+
+#include "tools/record/profile_export.hpp"
 
 namespace ambdrop {
 
@@ -10,6 +13,10 @@ struct ReplayOptions {
   std::vector<std::string> overrides;  ///< applied to whichever config is used
   std::string out_dir = "out";
   bool quiet = false;
+  /// Not "": write the record's currents as a profile-driven rig config there instead of
+  /// replaying (tools/record/profile_export.hpp).
+  std::string export_profile_path;
+  ProfileWindow profile;  ///< the part exported, and the points per AMB
 };
 
 /// `ambdrop replay`: re-runs a recorded run offline from its recorded inputs at their recorded

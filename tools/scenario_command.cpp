@@ -7,8 +7,10 @@
 #include <optional>
 
 #include "controller_if/controller_watchdog.hpp"
+#include "controller_if/current_profile.hpp"
 #include "controller_if/hil_session.hpp"
 #include "controller_if/internal_controller_link.hpp"
+#include "controller_if/profile_controller_link.hpp"
 #include "controller_if/scenario_faults.hpp"
 #include "controller_if/state_dump.hpp"
 #include "io/config_loader.hpp"
@@ -47,12 +49,12 @@ int RunScenarioCommand(const SimOptions& options) {
       throw ConfigError(options.scenario_path +
                         ": not a scenario: it has no [scenario] table (see configs/scenarios/)");
     }
-    model.emplace(BuildModel(config.params));
-    if (model->params.controller.kind != ControllerKind::kInternalPid) {
-      throw ConfigError(options.scenario_path +
-                        ": a scenario needs the in-process controller ([controller] with a pid) "
-                        "for its faults to act on");
+    // Without a controller the AMBs follow their current profiles, applied at every step as
+    // `ambdrop sim` applies them.
+    if (config.params.controller.kind == ControllerKind::kNone) {
+      config.params.controller.rate_Hz = 1.0 / config.params.simulation.step_s;
     }
+    model.emplace(BuildModel(config.params));
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitConfig;
@@ -72,7 +74,9 @@ int RunScenarioCommand(const SimOptions& options) {
     if (!options.record_path.empty()) {
       RecordHeaderInfo header;
       header.source = "sim";
-      header.controller = "internal+scenario";
+      header.controller = model->params.controller.kind == ControllerKind::kNone
+                              ? "profile+scenario"
+                              : "internal+scenario";
       header.config_toml = config.effective_toml;
       header.sensor_every_steps = substeps;
       header.output_every_steps =
@@ -85,15 +89,33 @@ int RunScenarioCommand(const SimOptions& options) {
     return kExitError;
   }
 
-  InternalControllerLink controller(*model, period_s);
-  ScenarioLink link(&controller, *model, scenario);
+  const bool profile_driven = model->params.controller.kind == ControllerKind::kNone;
+  std::unique_ptr<ControllerLink> controller;
+  if (profile_driven) {
+    controller = std::make_unique<ProfileControllerLink>(*model);
+  } else {
+    controller = std::make_unique<InternalControllerLink>(*model, period_s);
+  }
+  ScenarioLink link(controller.get(), *model, scenario);
   ScenarioTrigger trigger(*model, scenario);
+  // A rig's own scheduled trigger (allowed only when the scenario has no power events).
+  std::optional<ScheduledTrigger> rig_trigger;
+  std::vector<TriggerSource*> triggers{&trigger};
+  if (model->trigger_step >= 0) {
+    // At the steps `ambdrop sim` uses: times formed as the session forms them.
+    const double restore_s = model->restore_step >= 0 ? model->restore_step * dt : -1.0;
+    rig_trigger.emplace(model->trigger_step * dt, ScheduledFailure(*model), restore_s,
+                        ScheduledRestore(*model));
+    triggers.push_back(&*rig_trigger);
+  }
+  const ControlInput profile_start = ProfileStartInput(*model);
   HilOptions hil;
+  if (profile_driven) hil.initial_input = &profile_start;
   hil.watchdog_timeout_s = scenario.watchdog_timeout_s;
   hil.silence_action = ParseSilenceAction(scenario.silence_action);
   hil.recorder = recorder.get();
   auto outputs = std::make_unique<HilSession::OutputRing>();
-  HilSession session(*model, &link, {&trigger}, hil, outputs.get());
+  HilSession session(*model, &link, triggers, hil, outputs.get());
   RunSummary summary(model->params);
   ScenarioOutcome outcome(*model);
   Observation o;
