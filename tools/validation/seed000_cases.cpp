@@ -97,13 +97,4 @@ std::vector<ValidationCheck> Seed000ModelsDropAtRest(const std::string& configs_
   return checks;
 }
 
-std::vector<ValidationCase> AllValidationCases() {
-  return {
-      {"seed000_table3", "Jarroux 2019 Table 3: TDB spin-up times, drop at 6500 rpm",
-       Seed000SpinUpTable3},
-      {"seed000_models", "Jarroux 2019 Sec. 6.1: TDB models #1, #2, #3, drop at rest",
-       Seed000ModelsDropAtRest},
-  };
-}
-
 }  // namespace ambdrop

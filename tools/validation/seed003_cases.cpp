@@ -1,0 +1,102 @@
+// Seed 003: "Dynamics of rotor drop on new type catcher bearing", Sec. 2.4 and 3: the rotor
+// dropped at 200 Hz onto double-decker catcher bearings (configs/ddcb_rigid.toml) and onto
+// single-decker ones (configs/sdcb_rigid.toml), 0.2 s after the drop.
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "io/config_loader.hpp"
+#include "rt_core/catcher_bearing_tdb.hpp"
+#include "tools/validation/orbit_rms.hpp"
+#include "tools/validation/stepped_drop.hpp"
+#include "tools/validation/tdb_peaks.hpp"
+#include "tools/validation/validation_cases.hpp"
+
+namespace ambdrop {
+namespace {
+
+struct CatcherDrop {
+  double peak_normal_N = 0.0;  ///< over both TDBs
+  /// RMS journal distance from its mean at the first TDB, from the first contact at either on.
+  double amplitude_m = 0.0;
+  double inner_race_rad_s = 0.0;         ///< first TDB, at the end
+  double intermediate_race_rad_s = 0.0;  ///< 0 without an intermediate race (single decker)
+  bool ok = false;
+};
+
+CatcherDrop Drop(const std::string& config_path) {
+  const Model model = BuildModel(LoadConfig(config_path).params);
+  TdbPeakTracker peaks(model.params);
+  OrbitRms orbit;
+  const SteppedDrop run = RunSteppedDrop(model, 0.2, [&](const Observation& o) {
+    peaks.Add(o);
+    if (peaks.MaxNormal_N() > 0.0) orbit.Add(o.tdb_journal_xy_m[0][0], o.tdb_journal_xy_m[0][1]);
+  });
+  CatcherDrop d;
+  d.ok = run.status == StepStatus::kOk;
+  d.peak_normal_N = peaks.MaxNormal_N();
+  d.amplitude_m = orbit.rms_m();
+  const int offset = model.tdb_state_offset[0];
+  d.inner_race_rad_s = run.final_state.y[offset + CatcherBearingTdb::kSpin];
+  const auto& tdb = static_cast<const CatcherBearingTdb&>(*model.tdbs[0]);
+  if (tdb.intermediate_offset() >= 0) {
+    d.intermediate_race_rad_s =
+        run.final_state.y[offset + tdb.intermediate_offset() + CatcherBearingTdb::kSpin];
+  }
+  return d;
+}
+
+// With the assumed parameters ambdrop gives the DDCB a larger amplitude than the SDCB (RMS
+// and peak-to-peak along x; about equal along y). After the first impacts the journal slides
+// back and forth along the bottom of the race (rocking) in both cases; the softer double-decker
+// lets it swing further. The paper's 28 % comes from its orbit plots (jump height, "confusing"
+// orbits) with an initial upward velocity of 0.6 m/s that ambdrop does not impose.
+constexpr const char* kAmplitudeKnownFailure =
+    "issue 5: with the assumed damping, friction and levitated start the DDCB's RMS orbit is "
+    "larger than the SDCB's (the softer double-decker lets the journal rock further)";
+
+}  // namespace
+
+std::vector<ValidationCheck> Seed003DoubleDecker(const std::string& configs_dir) {
+  const char* kCase = "seed003 Sec. 3 (DDCB vs SDCB)";
+  const CatcherDrop ddcb = Drop(configs_dir + "/ddcb_rigid.toml");
+  const CatcherDrop sdcb = Drop(configs_dir + "/sdcb_rigid.toml");
+  const auto change = [](double ddcb_value, double sdcb_value) {
+    return fmt::format("{:+.1f} %", (ddcb_value / sdcb_value - 1.0) * 100.0);
+  };
+
+  std::vector<ValidationCheck> checks;
+  // "The DDCB lowers peak contact forces by about 15-27 %": accepted 10-35 %.
+  const double force_reduction = 1.0 - ddcb.peak_normal_N / sdcb.peak_normal_N;
+  ValidationCheck force =
+      TrendCheck(kCase, "peak contact force, DDCB vs SDCB", "15-27 % lower",
+                 change(ddcb.peak_normal_N, sdcb.peak_normal_N),
+                 sdcb.peak_normal_N > 0.0 && force_reduction >= 0.10 && force_reduction <= 0.35);
+  force.criterion = "10-35 % lower";
+  checks.push_back(force);
+  // "... and vibration amplitudes by at least 28 %": accepted at least 20 %.
+  ValidationCheck amplitude =
+      TrendCheck(kCase, "vibration amplitude (RMS), DDCB vs SDCB", ">= 28 % lower",
+                 change(ddcb.amplitude_m, sdcb.amplitude_m),
+                 sdcb.amplitude_m > 0.0 && ddcb.amplitude_m <= 0.8 * sdcb.amplitude_m);
+  amplitude.criterion = ">= 20 % lower";
+  if (!amplitude.pass) amplitude.known_failure = kAmplitudeKnownFailure;
+  checks.push_back(amplitude);
+  // The intermediate race "takes ~17 % of the inner race speed" (the paper's experiment);
+  // accepted: a fraction between 5 and 50 %.
+  constexpr double kPublishedSpeedRatio = 0.17;
+  const double ratio = ddcb.intermediate_race_rad_s / ddcb.inner_race_rad_s;
+  ValidationCheck speed = TrendCheck(kCase, "intermediate / inner race speed (DDCB)",
+                                     fmt::format("{:.0f} %", kPublishedSpeedRatio * 100.0),
+                                     fmt::format("{:.1f} %", ratio * 100.0),
+                                     ddcb.inner_race_rad_s > 0.0 && ratio > 0.05 && ratio < 0.5);
+  speed.deviation = ratio / kPublishedSpeedRatio - 1.0;
+  speed.criterion = "5-50 %";
+  checks.push_back(speed);
+  if (!ddcb.ok || !sdcb.ok) {
+    checks.push_back(TrendCheck(kCase, "all drops run to the end", "yes", "a run diverged", false));
+  }
+  return checks;
+}
+
+}  // namespace ambdrop
