@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "io/config_base.hpp"
+#include "io/config_measurement.hpp"
 #include "io/config_overrides.hpp"
 #include "io/config_readers.hpp"
 #include "io/config_realtime.hpp"
@@ -29,7 +30,7 @@ toml::table Parse(const std::string& text, const std::string& source_name) {
 
 ModelParams ReadModel(const TableReader& root) {
   root.AllowOnly({"name", "simulation", "gravity", "trigger", "rotor", "bearing", "amb", "sensor",
-                  "tdb", "unbalance", "controller", "can", "realtime", "scenario"});
+                  "tdb", "unbalance", "controller", "can", "realtime", "scenario", "measurement"});
   ModelParams params;
   params.name = root.String("name", "");
   params.simulation = config_detail::ReadSimulation(root);
@@ -76,6 +77,9 @@ LoadedConfig LoadConfigFromString(const std::string& text, const std::string& so
   loaded.realtime = ReadRealtimeConfig(root_reader);
   if (const std::optional<TableReader> scenario = root_reader.OptionalTable("scenario")) {
     loaded.scenario = ReadScenario(*scenario, loaded.params);
+  }
+  if (const std::optional<TableReader> measurement = root_reader.OptionalTable("measurement")) {
+    loaded.measurement = config_detail::ReadMeasurement(*measurement, loaded.params);
   }
   if (const std::optional<TableReader> can = root_reader.OptionalTable("can")) {
     const CanNames names = CanNamesOf(loaded.params);

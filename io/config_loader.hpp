@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "io/config_can.hpp"
+#include "io/config_measurement.hpp"
 #include "io/config_realtime.hpp"
 #include "rt_core/model_params.hpp"
 #include "rt_core/scenario_params.hpp"
@@ -29,6 +30,10 @@ struct LoadedConfig {
   RealtimeConfig realtime;
   /// The [scenario] table of a scenario file (io/config_scenario.hpp), if there is one.
   std::optional<ScenarioParams> scenario;
+  /// The [measurement] table (io/config_measurement.hpp), if there is one: how a measured
+  /// record's columns map onto the model, for `ambdrop fit`. Its names are the model's, indexed
+  /// in params' order.
+  std::optional<MeasurementParams> measurement;
   std::string source_path;
   std::string source_text;     ///< the file as read
   std::string effective_toml;  ///< after --set overrides, re-serialised
