@@ -7,7 +7,9 @@
 #include <string>
 
 #include "tools/exit_codes.hpp"
+#include "tools/fit_command.hpp"
 #include "tools/hil_command.hpp"
+#include "tools/measure_command.hpp"
 #include "tools/modes_command.hpp"
 #include "tools/replay_command.hpp"
 #include "tools/sim_command.hpp"
@@ -205,6 +207,100 @@ int main(int argc, char** argv) {
                    "samples out, state) into an LCM event log for `ambdrop replay`")
       ->type_name("FILE.lcm");
 
+  ambdrop::MeasureCommandOptions measure;
+  CLI::App* measure_command = app.add_subcommand(
+      "measure",
+      "Make a measured-like record (CSV) from a truth rig: sensor readings, coil currents, TDB "
+      "loads and speeds, with noise, for testing `fit`");
+  measure_command->add_option("TRUTH_CONFIG", measure.config_path, "TOML config of the truth rig")
+      ->required();
+  measure_command->add_option("--out", measure.out_path, "The record to write")
+      ->type_name("FILE.csv")
+      ->required();
+  AddSetOption(measure_command, &measure.overrides);
+  measure_command
+      ->add_option("--rate-Hz", measure.rate_Hz,
+                   "Sample rate, a whole number of physics steps per sample (default: the "
+                   "config's controller.rate_Hz)")
+      ->type_name("R")
+      ->check(CLI::PositiveNumber);
+  measure_command
+      ->add_option("--channels", measure.channels,
+                   "Comma list of channel groups: displacement, current, tdb_normal_force, "
+                   "tdb_speed, rotor_speed")
+      ->type_name("LIST")
+      ->capture_default_str();
+  measure_command
+      ->add_option("--measurement-toml", measure.measurement_toml_path,
+                   "Also write the [measurement] table that maps the record's columns, for an "
+                   "analysed config")
+      ->type_name("FILE");
+  measure_command
+      ->add_option("--current-noise-A", measure.current_noise_A,
+                   "Standard deviation of the noise added to the currents (A)")
+      ->type_name("S")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  measure_command
+      ->add_option("--force-noise-N", measure.force_noise_N,
+                   "Standard deviation of the noise added to the TDB normal forces (N)")
+      ->type_name("S")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  measure_command
+      ->add_option("--speed-noise-rad-s", measure.speed_noise_rad_s,
+                   "Standard deviation of the noise added to the TDB and rotor speeds (rad/s)")
+      ->type_name("S")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  measure_command
+      ->add_option("--seed", measure.seed,
+                   "Seed of the added noise (the sensors' noise keeps the config's seeds)")
+      ->type_name("N")
+      ->capture_default_str();
+  measure_command
+      ->add_option("--from-s", measure.from_s,
+                   "Leave out the rows before this run time (t stays run time)")
+      ->type_name("T0")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  measure_command->add_flag("--quiet,-q", measure.quiet,
+                            "No summary on stdout and no progress bar");
+
+  ambdrop::FitOptions fit;
+  CLI::App* fit_command = app.add_subcommand(
+      "fit",
+      "Hold the model against a measured record: residuals, the missing effect, its parameters, "
+      "and the error before and after");
+  fit_command->add_option("CONFIG", fit.config_path, "The declared model, with [measurement]")
+      ->required();
+  fit_command->add_option("--measured", fit.measured_path, "The measured record (CSV)")
+      ->type_name("FILE")
+      ->required();
+  fit_command->add_option("--out", fit.out_dir, "Output directory (fit.json, report.md, plots)")
+      ->type_name("DIR")
+      ->capture_default_str();
+  AddSetOption(fit_command, &fit.overrides);
+  fit_command
+      ->add_option("--lead-s", fit.lead_s,
+                   "Simulate from this long before the trigger, from the measured state")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  fit_command->add_option("--threads", fit.threads, "Candidates fitted in parallel")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  fit_command
+      ->add_option("--max-runs", fit.max_runs_per_start,
+                   "Model runs per start of each candidate's search")
+      ->check(CLI::Range(4, 10000))
+      ->capture_default_str();
+  fit_command
+      ->add_option("--tolerance", fit.tolerance,
+                   "Overall relative RMS residual within which model and record agree")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  fit_command->add_flag("--quiet,-q", fit.quiet, "No summary on stdout");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -226,6 +322,8 @@ int main(int argc, char** argv) {
     if (hil_command->parsed()) return ambdrop::RunHilCommand(hil);
     if (replay_command->parsed()) return ambdrop::RunReplayCommand(replay);
     if (validate_command->parsed()) return ambdrop::RunValidateCommand(validate);
+    if (measure_command->parsed()) return ambdrop::RunMeasureCommand(measure);
+    if (fit_command->parsed()) return ambdrop::RunFitCommand(fit);
     if (modes_command->parsed()) {
       if (speed_option->count() > 0) modes.speed_rpm = speed_rpm;
       return ambdrop::RunModesCommand(modes);

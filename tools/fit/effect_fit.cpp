@@ -1,0 +1,172 @@
+#include "tools/fit/effect_fit.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unsupported/Eigen/LevenbergMarquardt>
+
+namespace ambdrop {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+struct Flat {
+  const Effect* effect;
+  std::size_t effect_index;
+  const EffectParameter* parameter;
+};
+
+// Bounded parameters are searched through p = lo + (hi - lo) (1 + sin z) / 2, so that the
+// unconstrained Levenberg-Marquardt never leaves the bounds; angles are searched as they are.
+double ToValue(const EffectParameter& p, double z) {
+  if (p.periodic) return z;
+  return p.lower + (p.upper - p.lower) * 0.5 * (1.0 + std::sin(z));
+}
+double ToSearch(const EffectParameter& p, double v) {
+  if (p.periodic) return v;
+  const double u = std::clamp(2.0 * (v - p.lower) / (p.upper - p.lower) - 1.0, -1.0, 1.0);
+  return std::asin(u);
+}
+double Slope(const EffectParameter& p, double z) {
+  return p.periodic ? 1.0 : 0.5 * (p.upper - p.lower) * std::cos(z);
+}
+
+// ~1 % of the range: contact makes the cost rough at finer scales.
+constexpr double kStep = 0.02;
+
+struct Problem : Eigen::DenseFunctor<double> {
+  Problem(const RecordCost& c, const std::vector<const Effect*>& e, const std::vector<Flat>& f,
+          int budget)
+      : DenseFunctor<double>(static_cast<int>(f.size()), static_cast<int>(c.size())),
+        cost(c),
+        effects(e),
+        flat(f),
+        runs_left(budget) {}
+
+  std::vector<std::vector<double>> Values(const Eigen::VectorXd& z) const {
+    std::vector<std::vector<double>> v(effects.size());
+    for (std::size_t i = 0; i < flat.size(); ++i) {
+      v[flat[i].effect_index].push_back(
+          ToValue(*flat[i].parameter, z(static_cast<Eigen::Index>(i))));
+    }
+    return v;
+  }
+  Eigen::VectorXd Run(const Eigen::VectorXd& z) {
+    ++runs;
+    --runs_left;
+    return cost.Residual(WithEffects(cost.declared(), effects, Values(z)));
+  }
+  int operator()(const Eigen::VectorXd& z, Eigen::VectorXd& fvec) {
+    if (runs_left <= 0) return -1;  // out of budget: LM stops and keeps the best so far
+    fvec = Run(z);
+    const double sse = fvec.squaredNorm();
+    if (sse < best_sse) {
+      best_sse = sse;
+      best_z = z;
+    }
+    return 0;
+  }
+  int df(const Eigen::VectorXd& z, Eigen::MatrixXd& jac) {
+    if (runs_left < inputs() + 1) return -1;
+    const Eigen::VectorXd f0 = Run(z);
+    for (Eigen::Index i = 0; i < z.size(); ++i) {
+      Eigen::VectorXd zi = z;
+      zi(i) += kStep;
+      jac.col(i) = (Run(zi) - f0) / kStep;
+    }
+    return 0;
+  }
+
+  const RecordCost& cost;
+  const std::vector<const Effect*>& effects;
+  const std::vector<Flat>& flat;
+  int runs_left;
+  int runs = 0;
+  double best_sse = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd best_z;
+};
+
+}  // namespace
+
+ModelParams WithEffects(const ModelParams& declared, const std::vector<const Effect*>& effects,
+                        const std::vector<std::vector<double>>& values) {
+  ModelParams p = declared;
+  for (std::size_t e = 0; e < effects.size(); ++e) effects[e]->apply(values[e], &p);
+  return p;
+}
+
+EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& effects,
+                     int max_runs_per_start) {
+  std::vector<Flat> flat;
+  std::size_t starts = 1;
+  for (std::size_t e = 0; e < effects.size(); ++e) {
+    for (const EffectParameter& p : effects[e]->parameters) {
+      flat.push_back({effects[e], e, &p});
+      starts = std::max(starts, p.starts.size());
+    }
+  }
+  EffectFit fit;
+  for (const Effect* e : effects) fit.effects.push_back(e->name);
+  fit.sse = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd best_z;
+  for (std::size_t s = 0; s < starts; ++s) {
+    // Start s takes each parameter's start s (cycling through shorter lists).
+    Eigen::VectorXd z(static_cast<Eigen::Index>(flat.size()));
+    for (std::size_t i = 0; i < flat.size(); ++i) {
+      const EffectParameter& p = *flat[i].parameter;
+      const double v = p.starts.empty() ? 0.5 * (p.lower + p.upper) : p.starts[s % p.starts.size()];
+      z(static_cast<Eigen::Index>(i)) = ToSearch(p, v);
+    }
+    Problem problem(cost, effects, flat, max_runs_per_start);
+    Eigen::LevenbergMarquardt<Problem> lm(problem);
+    lm.setXtol(1e-4);
+    lm.setFtol(1e-4);
+    lm.minimize(z);
+    fit.evaluations += problem.runs;
+    if (problem.best_sse < fit.sse) {
+      fit.sse = problem.best_sse;
+      best_z = problem.best_z;
+    }
+  }
+  if (best_z.size() == 0) return fit;
+
+  // The Jacobian at the optimum, in the parameters' own units, for their uncertainty.
+  Problem at(cost, effects, flat, static_cast<int>(flat.size()) + 1);
+  Eigen::MatrixXd jz(static_cast<Eigen::Index>(cost.size()),
+                     static_cast<Eigen::Index>(flat.size()));
+  at.df(best_z, jz);
+  fit.evaluations += at.runs;
+  const Eigen::Index n = static_cast<Eigen::Index>(flat.size());
+  Eigen::MatrixXd jp = jz;
+  std::vector<bool> at_bound(flat.size(), false);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double slope = Slope(*flat[static_cast<std::size_t>(i)].parameter, best_z(i));
+    if (std::abs(slope) < 1e-9) {
+      at_bound[static_cast<std::size_t>(i)] = true;
+      jp.col(i).setZero();
+    } else {
+      jp.col(i) /= slope;
+    }
+  }
+  const double dof =
+      std::max<double>(1.0, static_cast<double>(cost.size()) - static_cast<double>(n));
+  const Eigen::MatrixXd jtj = jp.transpose() * jp;
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(jtj);
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Constant(n, n, kNaN);
+  if (lu.isInvertible()) cov = lu.inverse() * (fit.sse / dof);
+
+  fit.values = at.Values(best_z);
+  for (std::size_t i = 0; i < flat.size(); ++i) {
+    ParameterEstimate est;
+    est.effect = flat[i].effect->name;
+    est.name = flat[i].parameter->name;
+    est.value = ToValue(*flat[i].parameter, best_z(static_cast<Eigen::Index>(i)));
+    const double var = cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
+    est.sigma = at_bound[i] || !(var >= 0.0) ? kNaN : std::sqrt(var);
+    fit.parameters.push_back(est);
+  }
+  return fit;
+}
+
+}  // namespace ambdrop

@@ -1,0 +1,40 @@
+#pragma once
+// Step d of `ambdrop fit`: the parameters of one effect (or two together) that bring the model
+// closest to the record, by Eigen's Levenberg-Marquardt on the record's residual vector, from
+// several starts (contact makes the cost bumpy and phases have several minima).
+#include <string>
+#include <vector>
+
+#include "tools/fit/effect_library.hpp"
+#include "tools/fit/record_cost.hpp"
+
+namespace ambdrop {
+
+struct ParameterEstimate {
+  std::string effect;
+  std::string name;
+  double value = 0.0;
+  /// One standard deviation from the Jacobian at the optimum, s^2 (J^T J)^-1 with s^2 the
+  /// residual variance; NaN at a bound or where the record does not determine it. Residual
+  /// samples are correlated in time, so it is a lower bound.
+  double sigma = 0.0;
+};
+
+struct EffectFit {
+  std::vector<std::string> effects;
+  std::vector<ParameterEstimate> parameters;
+  std::vector<std::vector<double>> values;  ///< per effect, its parameter values
+  double sse = 0.0;                         ///< squared norm of the residual vector
+  int evaluations = 0;                      ///< model runs
+};
+
+/// Model params with the effects applied at `values` (per effect).
+ModelParams WithEffects(const ModelParams& declared, const std::vector<const Effect*>& effects,
+                        const std::vector<std::vector<double>>& values);
+
+/// Fits the effects' parameters together. `max_runs_per_start` bounds the model runs of each
+/// start (the Jacobian costs one run per parameter).
+EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& effects,
+                     int max_runs_per_start = 40);
+
+}  // namespace ambdrop

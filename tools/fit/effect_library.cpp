@@ -1,0 +1,263 @@
+#include "tools/fit/effect_library.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace ambdrop {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+using Q = MeasuredQuantity;
+
+bool HasFriction(const TdbParams& t) {
+  // The regularised Coulomb law applies to these models' rotor / inner-race contact.
+  return t.model == TdbModelKind::kContactLaw || t.model == TdbModelKind::kFourDof;
+}
+
+double SmallestClearance(const ModelParams& p) {
+  double c = 1e-3;
+  for (const TdbParams& t : p.tdbs) c = std::min(c, t.clearance_m);
+  return c;
+}
+
+Effect TdbMisalignment(const TdbParams& t) {
+  const std::string name = t.name;
+  const double c = t.clearance_m;
+  Effect e;
+  e.name = "tdb_misalignment:" + name;
+  e.family = "tdb_misalignment";
+  e.description = fmt::format("TDB {} centre offset from the magnetic centre (x, y)", name);
+  e.parameters = {{"x_m", -0.8 * c, 0.8 * c, {0.0, 0.3 * c, -0.3 * c}},
+                  {"y_m", -0.8 * c, 0.8 * c, {0.0, 0.3 * c, -0.3 * c}}};
+  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
+  e.apply = [name](const std::vector<double>& v, ModelParams* p) {
+    for (TdbParams& t : p->tdbs) {
+      if (t.name != name) continue;
+      t.misalignment = {true, v[0], v[1]};
+    }
+  };
+  e.config = [name](const std::vector<double>& v) {
+    return fmt::format("[tdb.{}.misalignment]\nenabled = true\nx_m = {:.6g}\ny_m = {:.6g}\n", name,
+                       v[0], v[1]);
+  };
+  return e;
+}
+
+Effect FrictionCoefficient(const ModelParams& declared) {
+  Effect e;
+  e.name = "friction_coefficient";
+  e.family = "friction_coefficient";
+  e.description = "rotor / TDB friction coefficient (every TDB)";
+  double mu = 0.2;
+  for (const TdbParams& t : declared.tdbs) {
+    if (HasFriction(t)) mu = t.friction.coefficient;
+  }
+  e.parameters = {{"coefficient", 0.01, 0.8, {mu, 0.5 * mu, std::min(0.8, 2.0 * mu)}}};
+  e.revealed_by = {Q::kDisplacement, Q::kTdbSpeed, Q::kTdbNormalForce, Q::kRotorSpeed};
+  e.apply = [](const std::vector<double>& v, ModelParams* p) {
+    for (TdbParams& t : p->tdbs) {
+      if (HasFriction(t)) t.friction.coefficient = v[0];
+    }
+  };
+  e.config = [names = declared.tdbs](const std::vector<double>& v) {
+    std::string s;
+    for (const TdbParams& t : names) {
+      if (HasFriction(t))
+        s += fmt::format("[tdb.{}.friction]\ncoefficient = {:.6g}\n", t.name, v[0]);
+    }
+    return s;
+  };
+  return e;
+}
+
+Effect Unbalance(const ModelParams& declared) {
+  // One plane, midway between the outermost TDBs: a static unbalance. Its moment about the
+  // centre of mass and a second plane would be a further effect (couple unbalance).
+  double lo = 0.0, hi = 0.0;
+  if (!declared.tdbs.empty()) {
+    lo = hi = declared.tdbs.front().position_m;
+    for (const TdbParams& t : declared.tdbs) {
+      lo = std::min(lo, t.position_m);
+      hi = std::max(hi, t.position_m);
+    }
+  }
+  const double position = 0.5 * (lo + hi);
+  Effect e;
+  e.name = "unbalance";
+  e.family = "unbalance";
+  e.description =
+      fmt::format("static unbalance at {:.4g} m (mass x eccentricity, phase)", position);
+  e.parameters = {{"mass_eccentricity_kg_m", 0.0, 0.05, {0.0, 1e-4, 1e-3}},
+                  {"phase_rad", -kPi, kPi, {0.0, 0.5 * kPi, kPi, -0.5 * kPi}, true}};
+  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
+  e.apply = [position](const std::vector<double>& v, ModelParams* p) {
+    UnbalanceParams u;
+    u.name = "fitted";
+    u.position_m = position;
+    u.mass_kg = 1.0;
+    u.eccentricity_m = v[0];
+    u.phase_rad = v[1];
+    p->unbalances.push_back(u);
+  };
+  e.config = [position](const std::vector<double>& v) {
+    return fmt::format(
+        "[unbalance.fitted]\nposition_m = {:.6g}\nmass_kg = 1.0\neccentricity_m = {:.6g}\n"
+        "phase_rad = {:.6g}\n",
+        position, v[0], std::remainder(v[1], 2 * kPi));
+  };
+  return e;
+}
+
+Effect FluxDecay(const ModelParams& declared) {
+  Effect e;
+  e.name = "amb_flux_decay";
+  e.family = "amb_flux_decay";
+  e.description = "AMB force fading after power loss, exp(-2t/tau) (every AMB)";
+  e.parameters = {{"time_constant_s", 1e-4, 0.1, {1e-4, 2e-3, 1e-2}}};
+  e.revealed_by = {Q::kDisplacement, Q::kCurrent, Q::kTdbNormalForce};
+  e.apply = [](const std::vector<double>& v, ModelParams* p) {
+    for (AmbParams& a : p->ambs) a.flux_decay = {true, v[0]};
+  };
+  e.config = [ambs = declared.ambs](const std::vector<double>& v) {
+    std::string s;
+    for (const AmbParams& a : ambs) {
+      s += fmt::format("[amb.{}.flux_decay]\nenabled = true\ntime_constant_s = {:.6g}\n", a.name,
+                       v[0]);
+    }
+    return s;
+  };
+  return e;
+}
+
+Effect SensorRunout(const SensorParams& s, double clearance) {
+  const std::string name = s.name;
+  Effect e;
+  e.name = "sensor_runout:" + name;
+  e.family = "sensor_runout";
+  e.description = fmt::format("synchronous (1X) runout of sensor {}", name);
+  e.parameters = {{"amplitude_1x_m", 0.0, 0.3 * clearance, {0.0, 0.02 * clearance}},
+                  {"phase_1x_rad", -kPi, kPi, {0.0, 0.5 * kPi, kPi, -0.5 * kPi}, true}};
+  e.revealed_by = {Q::kDisplacement};
+  e.apply = [name](const std::vector<double>& v, ModelParams* p) {
+    for (SensorParams& s : p->sensors) {
+      if (s.name != name) continue;
+      s.runout.enabled = true;
+      s.runout.amplitude_1x_m = std::abs(v[0]);
+      s.runout.phase_1x_rad = v[1];
+    }
+  };
+  e.config = [name](const std::vector<double>& v) {
+    return fmt::format(
+        "[sensor.{}.runout]\nenabled = true\namplitude_1x_m = {:.6g}\nphase_1x_rad = {:.6g}\n",
+        name, std::abs(v[0]), std::remainder(v[1], 2 * kPi));
+  };
+  return e;
+}
+
+Effect SensorGainOffset(const SensorParams& s, double clearance) {
+  const std::string name = s.name;
+  Effect e;
+  e.name = "sensor_gain_offset:" + name;
+  e.family = "sensor_gain_offset";
+  e.description = fmt::format("scale error and offset of sensor {}", name);
+  e.parameters = {{"gain", 0.7, 1.3, {s.gain}},
+                  {"offset_m", -0.5 * clearance, 0.5 * clearance, {s.offset_m}}};
+  e.revealed_by = {Q::kDisplacement};
+  e.apply = [name](const std::vector<double>& v, ModelParams* p) {
+    for (SensorParams& s : p->sensors) {
+      if (s.name != name) continue;
+      s.gain = v[0];
+      s.offset_m = v[1];
+    }
+  };
+  e.config = [name](const std::vector<double>& v) {
+    return fmt::format(
+        "[sensor.{}]  # keys of the sensor's table\ngain = {:.6g}\noffset_m = {:.6g}\n", name, v[0],
+        v[1]);
+  };
+  return e;
+}
+
+Effect SensorLag(const SensorParams& s) {
+  const std::string name = s.name;
+  Effect e;
+  e.name = "sensor_lag:" + name;
+  e.family = "sensor_lag";
+  e.description = fmt::format("transport delay and first-order low-pass of sensor {}", name);
+  // The filter as its time constant: 0 is no filter, and the cost is smooth through it.
+  e.parameters = {{"delay_s", 0.0, 1e-3, {0.0, 2e-4}},
+                  {"filter_time_constant_s", 0.0, 1e-3, {0.0, 2e-4}}};
+  e.revealed_by = {Q::kDisplacement};
+  e.apply = [name](const std::vector<double>& v, ModelParams* p) {
+    for (SensorParams& s : p->sensors) {
+      if (s.name != name) continue;
+      s.lag.enabled = true;
+      s.lag.delay_s = std::max(0.0, v[0]);
+      s.lag.cutoff_Hz = v[1] > 1e-7 ? 1.0 / (2 * kPi * v[1]) : 0.0;
+    }
+  };
+  e.config = [name](const std::vector<double>& v) {
+    return fmt::format("[sensor.{}.lag]\nenabled = true\ndelay_s = {:.6g}\ncutoff_Hz = {:.6g}\n",
+                       name, std::max(0.0, v[0]), v[1] > 1e-7 ? 1.0 / (2 * kPi * v[1]) : 0.0);
+  };
+  return e;
+}
+
+Effect TdbDrag(const TdbParams& t) {
+  const std::string name = t.name;
+  Effect e;
+  e.name = "tdb_drag_torque:" + name;
+  e.family = "tdb_drag_torque";
+  e.description = fmt::format("constant drag torque on TDB {}'s inner race (seals, windage)", name);
+  e.parameters = {{"drag_torque_N_m", 0.0, 5.0, {0.0, 0.05, 0.5}}};
+  e.revealed_by = {Q::kTdbSpeed, Q::kDisplacement, Q::kRotorSpeed};
+  e.apply = [name](const std::vector<double>& v, ModelParams* p) {
+    for (TdbParams& t : p->tdbs) {
+      if (t.name == name) t.spin.drag_torque_N_m = std::max(0.0, v[0]);
+    }
+  };
+  e.config = [name](const std::vector<double>& v) {
+    return fmt::format("[tdb.{}.spin]\ndrag_torque_N_m = {:.6g}\n", name, std::max(0.0, v[0]));
+  };
+  return e;
+}
+
+}  // namespace
+
+std::vector<Effect> EffectLibrary(const ModelParams& declared) {
+  std::vector<Effect> effects;
+  const double clearance = SmallestClearance(declared);
+  for (const TdbParams& t : declared.tdbs) {
+    if (!t.misalignment.enabled) effects.push_back(TdbMisalignment(t));
+  }
+  if (std::any_of(declared.tdbs.begin(), declared.tdbs.end(), HasFriction)) {
+    effects.push_back(FrictionCoefficient(declared));
+  }
+  effects.push_back(Unbalance(declared));
+  const bool decays = std::any_of(declared.ambs.begin(), declared.ambs.end(),
+                                  [](const AmbParams& a) { return a.flux_decay.enabled; });
+  if (!declared.ambs.empty() && !decays) effects.push_back(FluxDecay(declared));
+  for (const SensorParams& s : declared.sensors) {
+    if (!s.runout.enabled) effects.push_back(SensorRunout(s, clearance));
+    effects.push_back(SensorGainOffset(s, clearance));
+    if (!s.lag.enabled) effects.push_back(SensorLag(s));
+  }
+  for (const TdbParams& t : declared.tdbs) {
+    if (t.spin.enabled) effects.push_back(TdbDrag(t));
+  }
+  return effects;
+}
+
+bool Decidable(const Effect& effect, const MeasurementParams& m) {
+  for (const MeasurementChannel& ch : m.channels) {
+    if (std::find(effect.revealed_by.begin(), effect.revealed_by.end(), ch.quantity) !=
+        effect.revealed_by.end()) {
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace ambdrop

@@ -1,0 +1,154 @@
+#include "tools/fit/effect_selection.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+namespace ambdrop {
+namespace {
+
+double Bic(double sse, std::size_t n, std::size_t k) {
+  const double N = static_cast<double>(std::max<std::size_t>(n, 1));
+  return N * std::log(std::max(sse, 1e-300) / N) + static_cast<double>(k) * std::log(N);
+}
+
+std::size_t Parameters(const EffectFit& f) {
+  return f.parameters.size();
+}
+
+// Runs job(i) for i in [0, count) on `threads` threads; results land by index, so the outcome
+// does not depend on which thread ran what.
+template <typename Job>
+void ParallelFor(std::size_t count, int threads, const Job& job) {
+  std::atomic<std::size_t> next{0};
+  const auto worker = [&] {
+    for (std::size_t i = next++; i < count; i = next++) job(i);
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::max(threads, 1); ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+}
+
+}  // namespace
+
+double AgreementLimit(const Selection& s, const SelectionRules& rules) {
+  return std::max(rules.tolerance, rules.explained_over_floor * s.noise_floor);
+}
+
+double OverallRms(const RecordCost& cost, double sse) {
+  return std::sqrt(sse / std::max(cost.channels(), 1));
+}
+
+Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& library,
+                        double noise_floor, const SelectionRules& rules) {
+  Selection s;
+  s.noise_floor = noise_floor;
+  const double sse_before = cost.Residual(cost.declared()).squaredNorm();
+  s.rms_before = OverallRms(cost, sse_before);
+  s.bic_before = Bic(sse_before, cost.size(), 0);
+  s.rms_after = s.rms_before;
+
+  // Singles.
+  std::vector<CandidateScore> singles(library.size());
+  ParallelFor(library.size(), rules.threads, [&](std::size_t i) {
+    const Effect& e = library[i];
+    CandidateScore& c = singles[i];
+    c.name = e.name;
+    c.family = e.family;
+    c.description = e.description;
+    c.decidable = Decidable(e, cost.measurement());
+    if (!c.decidable) return;
+    c.fit = FitEffects(cost, {&e}, rules.max_runs_per_start);
+    c.rms_after = OverallRms(cost, c.fit.sse);
+    c.bic = Bic(c.fit.sse, cost.size(), Parameters(c.fit));
+    c.delta_bic = c.bic - s.bic_before;
+  });
+  const auto material = [&](double before, double after, double delta_bic) {
+    return after * rules.min_cut <= before && delta_bic <= -rules.min_delta_bic;
+  };
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < singles.size(); ++i) {
+    if (singles[i].decidable && std::isfinite(singles[i].fit.sse)) order.push_back(i);
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return singles[a].bic < singles[b].bic; });
+  s.candidates = singles;
+
+  const double limit = AgreementLimit(s, rules);
+  const bool at_floor = s.rms_before <= limit;
+  if (!order.empty() && !at_floor) {
+    CandidateScore& best = s.candidates[order.front()];
+    if (material(s.rms_before, best.rms_after, best.delta_bic)) {
+      best.accepted = true;
+      s.chosen = {best.name};
+      s.chosen_fit = best.fit;
+      s.rms_after = best.rms_after;
+      // A structured residual left: the best with a partner.
+      if (best.rms_after > limit) {
+        const std::size_t partners =
+            std::min<std::size_t>(order.size() - 1, static_cast<std::size_t>(rules.pair_partners));
+        std::vector<CandidateScore> pairs(partners);
+        const Effect& first = library[order.front()];
+        ParallelFor(partners, rules.threads, [&](std::size_t p) {
+          const Effect& second = library[order[p + 1]];
+          CandidateScore& c = pairs[p];
+          c.name = first.name + " + " + second.name;
+          c.family = first.family + " + " + second.family;
+          c.description = first.description + "; " + second.description;
+          c.fit = FitEffects(cost, {&first, &second}, rules.max_runs_per_start);
+          c.rms_after = OverallRms(cost, c.fit.sse);
+          c.bic = Bic(c.fit.sse, cost.size(), Parameters(c.fit));
+          c.delta_bic = c.bic - best.bic;
+        });
+        std::size_t pick = pairs.size();
+        for (std::size_t p = 0; p < pairs.size(); ++p) {
+          if (material(best.rms_after, pairs[p].rms_after, pairs[p].delta_bic) &&
+              (pick == pairs.size() || pairs[p].bic < pairs[pick].bic)) {
+            pick = p;
+          }
+        }
+        if (pick < pairs.size()) {
+          pairs[pick].accepted = true;
+          best.accepted = false;
+          s.chosen = pairs[pick].fit.effects;
+          s.chosen_fit = pairs[pick].fit;
+          s.rms_after = pairs[pick].rms_after;
+        }
+        for (CandidateScore& p : pairs) s.candidates.push_back(std::move(p));
+      }
+    }
+  }
+
+  if (at_floor) {
+    s.verdict = "no_effect_needed";
+    s.reason = fmt::format(
+        "the declared model is already within {:.3g} of the record (relative RMS), inside the "
+        "agreement limit {:.3g}",
+        s.rms_before, limit);
+  } else if (s.chosen.empty()) {
+    s.verdict = "unexplained";
+    s.reason = fmt::format(
+        "the residual ({:.3g}, agreement limit {:.3g}) is not cut by {:.0f} % or more by any "
+        "effect of the library",
+        s.rms_before, limit, 100.0 * (1.0 - 1.0 / rules.min_cut));
+  } else if (s.rms_after <= limit) {
+    s.verdict = "explained";
+    s.reason = fmt::format(
+        "with the chosen effects the residual falls from {:.3g} to {:.3g}, within the agreement "
+        "limit {:.3g}",
+        s.rms_before, s.rms_after, limit);
+  } else {
+    s.verdict = "partly_explained";
+    s.reason = fmt::format(
+        "the chosen effects cut the residual from {:.3g} to {:.3g}, still above the agreement "
+        "limit {:.3g}",
+        s.rms_before, s.rms_after, limit);
+  }
+  return s;
+}
+
+}  // namespace ambdrop

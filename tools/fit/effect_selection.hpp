@@ -1,0 +1,62 @@
+#pragma once
+// Step e of `ambdrop fit`: which effects the record calls for. Every decidable effect of the
+// library is fitted alone; the best is kept only if it cuts the error materially and pays for
+// its parameters (BIC = N ln(SSE/N) + k ln N); if a structured residual remains, the best is
+// tried with each of the next few as a pair. The verdict compares what is left with the
+// record's own noise.
+#include <string>
+#include <vector>
+
+#include "tools/fit/effect_fit.hpp"
+
+namespace ambdrop {
+
+struct SelectionRules {
+  double min_cut = 1.25;        ///< rms_before / rms_after an accepted effect must reach
+  double min_delta_bic = 10.0;  ///< and how much it must lower the BIC
+  /// Left within this many times the noise floor, the residual is explained.
+  double explained_over_floor = 2.0;
+  /// An overall relative RMS within which model and record agree anyway: a drop is chaotic
+  /// after the first impacts, and the start state comes from noisy sensors, so even the true
+  /// model leaves about 1 % of each channel's range (measured on clean records).
+  double tolerance = 0.02;
+  int pair_partners = 4;  ///< pairs tried: the best with each of the next this many
+  int threads = 2;
+  int max_runs_per_start = 40;
+};
+
+struct CandidateScore {
+  std::string name;
+  std::string family;
+  std::string description;
+  bool decidable = true;  ///< false: no channel of the record can reveal it (not fitted)
+  EffectFit fit;
+  double rms_after = 0.0;  ///< overall relative RMS with it
+  double bic = 0.0;
+  double delta_bic = 0.0;  ///< against the declared model (a pair: against its best single)
+  bool accepted = false;
+};
+
+struct Selection {
+  double rms_before = 0.0;  ///< overall relative RMS of the declared model
+  double bic_before = 0.0;
+  double noise_floor = 0.0;                ///< overall relative RMS a perfect model would leave
+  std::vector<CandidateScore> candidates;  ///< singles in library order, then pairs
+  std::vector<std::string> chosen;         ///< effect names
+  EffectFit chosen_fit;                    ///< their parameters
+  double rms_after = 0.0;
+  std::string verdict;  ///< explained | partly_explained | no_effect_needed | unexplained
+  std::string reason;   ///< one sentence: why this verdict
+};
+
+/// What the residual is judged against: the larger of the tolerance and the noise floor's
+/// multiple.
+double AgreementLimit(const Selection& s, const SelectionRules& rules);
+
+/// The overall relative RMS of a residual vector of `cost` (sqrt(SSE / channels)).
+double OverallRms(const RecordCost& cost, double sse);
+
+Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& library,
+                        double noise_floor, const SelectionRules& rules);
+
+}  // namespace ambdrop

@@ -1,0 +1,195 @@
+#include "tools/fit/fit_report.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "io/json_writer.hpp"
+#include "tools/fit/fit_plots.hpp"
+
+namespace ambdrop {
+namespace {
+
+const char* QuantityName(MeasuredQuantity q) {
+  switch (q) {
+    case MeasuredQuantity::kDisplacement:
+      return "displacement";
+    case MeasuredQuantity::kCurrent:
+      return "current";
+    case MeasuredQuantity::kTdbNormalForce:
+      return "tdb_normal_force";
+    case MeasuredQuantity::kTdbSpeed:
+      return "tdb_speed";
+    case MeasuredQuantity::kRotorSpeed:
+      return "rotor_speed";
+  }
+  return "?";
+}
+
+void Residuals(JsonWriter& json, const ResidualReport& r) {
+  json.BeginObject();
+  json.Key("overall").Number(r.overall);
+  json.Key("channels").BeginObject();
+  for (const ChannelResidual& c : r.channels) {
+    json.Key(c.column).BeginObject();
+    json.Key("quantity").String(c.description);
+    json.Key("rms").Number(c.rms);
+    json.Key("relative").Number(c.rms / c.scale);
+    json.Key("before_trigger").Number(c.rms_before);
+    json.Key("impact").Number(c.rms_impact);
+    json.Key("settled").Number(c.rms_settled);
+    json.Key("samples").Integer(static_cast<std::int64_t>(c.samples));
+    json.EndObject();
+  }
+  json.EndObject();
+  json.EndObject();
+}
+
+void Parameters(JsonWriter& json, const EffectFit& fit, const std::string& effect) {
+  json.BeginObject();
+  for (const ParameterEstimate& p : fit.parameters) {
+    if (p.effect != effect) continue;
+    json.Key(p.name).BeginObject(true);
+    json.Key("value").Number(p.value);
+    json.Key("sigma").Number(p.sigma);
+    json.EndObject();
+  }
+  json.EndObject();
+}
+
+}  // namespace
+
+std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementParams& m) {
+  const Selection& s = *o.selection;
+  JsonWriter json;
+  json.BeginObject();
+  json.Key("config").String(o.config_path);
+  json.Key("measured").String(o.measured_path);
+  json.Key("verdict").String(s.verdict);
+  json.Key("reason").String(s.reason);
+  json.Key("noise_floor").Number(s.noise_floor);
+  json.Key("windows").BeginObject(true);
+  json.Key("start_s").Number(o.before.windows.start_s);
+  json.Key("trigger_s").Number(o.before.windows.trigger_s);
+  json.Key("impact_end_s").Number(o.before.windows.impact_end_s);
+  json.Key("settled_start_s").Number(o.before.windows.settled_start_s);
+  json.Key("end_s").Number(o.before.windows.end_s);
+  json.EndObject();
+  json.Key("rms_before");
+  Residuals(json, o.before);
+  json.Key("rms_after");
+  Residuals(json, o.after);
+
+  json.Key("chosen").BeginArray();
+  for (std::size_t e = 0; e < o.chosen.size(); ++e) {
+    json.BeginObject();
+    json.Key("effect").String(o.chosen[e]->name);
+    json.Key("description").String(o.chosen[e]->description);
+    json.Key("parameters");
+    Parameters(json, s.chosen_fit, o.chosen[e]->name);
+    json.Key("config").String(o.chosen[e]->config(s.chosen_fit.values[e]));
+    json.EndObject();
+  }
+  json.EndArray();
+
+  json.Key("candidates").BeginArray();
+  for (const CandidateScore& c : s.candidates) {
+    json.BeginObject();
+    json.Key("effect").String(c.name);
+    json.Key("family").String(c.family);
+    json.Key("decidable").Bool(c.decidable);
+    if (c.decidable) {
+      json.Key("rms_after").Number(c.rms_after);
+      json.Key("delta_bic").Number(c.delta_bic);
+      json.Key("accepted").Bool(c.accepted);
+      json.Key("runs").Integer(c.fit.evaluations);
+      json.Key("parameters").BeginObject();
+      for (const ParameterEstimate& p : c.fit.parameters) {
+        json.Key(c.fit.effects.size() > 1 ? p.effect + "." + p.name : p.name).BeginObject(true);
+        json.Key("value").Number(p.value);
+        json.Key("sigma").Number(p.sigma);
+        json.EndObject();
+      }
+      json.EndObject();
+    }
+    json.EndObject();
+  }
+  json.EndArray();
+
+  json.Key("undecidable").BeginArray();
+  for (const Effect& e : *o.library) {
+    if (Decidable(e, m)) continue;
+    json.BeginObject(true);
+    json.Key("effect").String(e.name);
+    json.Key("needs").BeginArray(true);
+    for (const MeasuredQuantity q : e.revealed_by) json.String(QuantityName(q));
+    json.EndArray();
+    json.EndObject();
+  }
+  json.EndArray();
+  json.Key("wall_time_s").Number(o.wall_time_s);
+  json.EndObject();
+  return json.str();
+}
+
+void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
+                    const ModelParams& params, const MeasurementParams& m,
+                    const MeasuredRecord& record, const SimulatedRecord& before,
+                    const SimulatedRecord& after) {
+  const Selection& s = *o.selection;
+  const std::vector<std::string> plots = WriteFitPlots(dir, params, m, record, before, after);
+  std::string md;
+  md += fmt::format("# Fit of {} to {}\n\n", o.config_path, o.measured_path);
+  md += fmt::format("**Verdict: {}.** {}.\n\n", s.verdict, s.reason);
+  md += fmt::format(
+      "Overall relative RMS residual: {:.4g} before, {:.4g} after (noise floor "
+      "{:.3g}).\n\n",
+      s.rms_before, s.rms_after, s.noise_floor);
+  if (!o.chosen.empty()) {
+    md += "## Chosen effects\n\n";
+    for (std::size_t e = 0; e < o.chosen.size(); ++e) {
+      md += fmt::format("- **{}**: {}\n", o.chosen[e]->name, o.chosen[e]->description);
+      for (const ParameterEstimate& p : s.chosen_fit.parameters) {
+        if (p.effect == o.chosen[e]->name) {
+          md += fmt::format("  - {} = {:.6g} ± {:.2g}\n", p.name, p.value, p.sigma);
+        }
+      }
+      md += "\n  ```toml\n";
+      std::string cfg = o.chosen[e]->config(s.chosen_fit.values[e]);
+      for (std::size_t pos = 0; pos < cfg.size();) {
+        const std::size_t nl = cfg.find('\n', pos);
+        md += "  " + cfg.substr(pos, nl - pos) + "\n";
+        pos = nl == std::string::npos ? cfg.size() : nl + 1;
+      }
+      md += "  ```\n";
+    }
+    md += "\n";
+  }
+  md += "## Residual per channel (RMS, SI units)\n\n";
+  md += "| channel | quantity | before | after | before trigger | impact | settled |\n";
+  md += "|---|---|---|---|---|---|---|\n";
+  for (std::size_t c = 0; c < o.before.channels.size(); ++c) {
+    const ChannelResidual& b = o.before.channels[c];
+    const ChannelResidual& a = o.after.channels[c];
+    md += fmt::format(
+        "| {} | {} | {:.4g} | {:.4g} | {:.3g} → {:.3g} | {:.3g} → {:.3g} | {:.3g} → "
+        "{:.3g} |\n",
+        b.column, b.description, b.rms, a.rms, b.rms_before, a.rms_before, b.rms_impact,
+        a.rms_impact, b.rms_settled, a.rms_settled);
+  }
+  md +=
+      "\n## Candidates\n\n| effect | relative RMS with it | ΔBIC | accepted |\n|---|---|---|---|\n";
+  for (const CandidateScore& c : s.candidates) {
+    if (!c.decidable) {
+      md += fmt::format("| {} | not decidable from these channels | | |\n", c.name);
+      continue;
+    }
+    md += fmt::format("| {} | {:.4g} | {:.1f} | {} |\n", c.name, c.rms_after, c.delta_bic,
+                      c.accepted ? "yes" : "");
+  }
+  md += "\n## Plots\n\n";
+  for (const std::string& p : plots) md += fmt::format("![{}]({})\n\n", p, p);
+  WriteTextFile(dir / "report.md", md);
+}
+
+}  // namespace ambdrop

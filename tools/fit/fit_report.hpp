@@ -1,0 +1,37 @@
+#pragma once
+// Step f of `ambdrop fit`: fit.json (what a program reads) and report.md with its plots (what
+// a person reads).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tools/fit/effect_selection.hpp"
+#include "tools/fit/residuals.hpp"
+
+namespace ambdrop {
+
+struct FitOutcome {
+  std::string config_path;
+  std::string measured_path;
+  ResidualReport before;
+  ResidualReport after;
+  const Selection* selection = nullptr;
+  const std::vector<Effect>* library = nullptr;
+  std::vector<const Effect*> chosen;  ///< in selection->chosen order
+  double wall_time_s = 0.0;
+};
+
+/// fit.json: rms_before and rms_after (per channel and overall), chosen (effects with fitted
+/// parameters, uncertainties and their config keys), candidates (every effect tried, with its
+/// score), undecidable (effects no channel of the record can reveal), verdict and reason.
+std::string FitJson(const FitOutcome& outcome, const ModelParams& params,
+                    const MeasurementParams& measurement);
+
+/// report.md and its SVG plots in `dir`: measured vs model before and after, the residual over
+/// time, and the journal orbit at each TDB.
+void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& outcome,
+                    const ModelParams& params, const MeasurementParams& measurement,
+                    const MeasuredRecord& record, const SimulatedRecord& before,
+                    const SimulatedRecord& after);
+
+}  // namespace ambdrop

@@ -1,0 +1,377 @@
+#include "tools/fit/measured_record_maker.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <vector>
+
+#include "controller_if/offline_run.hpp"
+#include "controller_if/portable_random.hpp"
+#include "controller_if/run_record.hpp"
+#include "controller_if/sensor_emulator.hpp"
+#include "rt_core/amb_force.hpp"
+#include "rt_core/model.hpp"
+
+namespace ambdrop {
+namespace {
+
+using Currents = std::array<std::array<double, 2>, kMaxAmbs>;
+
+/// Each sample's coil control currents: what the controller commanded while the axis has
+/// power; after it loses power the current it had then, fading with the flux
+/// (rt_core/amb_force.hpp: force ~ exp(-2t/tau), so current ~ exp(-t/tau); gone at once
+/// without flux decay), as a coil-current sensor would read it. A step's input reaches the
+/// recorder after that step's observation, so a sample is filled only once the input after it
+/// is known: it takes the last input applied from its step or earlier.
+class CurrentSampler final : public RunRecorder {
+ public:
+  CurrentSampler(const ModelParams& params, double step_s) : params_(params), step_s_(step_s) {
+    for (auto& a : lost_at_) a = {-1, -1};
+  }
+  /// Called for each sample in step order, before the inputs of that step arrive.
+  void AddSample(std::int64_t step) {
+    steps_.push_back(step);
+    current_A_.emplace_back();
+  }
+  /// Fills the samples still open; the last input holds to the end.
+  const std::vector<Currents>& Finish() noexcept {
+    FillBefore(std::numeric_limits<std::int64_t>::max());
+    return current_A_;
+  }
+
+  void OnStart(const RecordedStart& start) noexcept override { held_ = start.loop_current_A; }
+  void OnInput(const RecordedInput& input) noexcept override {
+    FillBefore(input.step);
+    held_ = input.current_A;
+  }
+  // Power events come before the step's input, as PowerState applies them.
+  void OnPower(const RecordedPower& p) noexcept override {
+    FillBefore(p.step);
+    for (std::size_t a = 0; a < params_.ambs.size(); ++a) {
+      if ((p.event.amb_mask & (1u << a)) == 0) continue;
+      const bool axes[2] = {p.event.axis_x, p.event.axis_y};
+      for (int axis = 0; axis < 2; ++axis) {
+        if (!axes[axis]) continue;
+        if (p.event.restore) {
+          lost_at_[a][axis] = -1;
+        } else if (lost_at_[a][axis] < 0) {
+          lost_at_[a][axis] = p.step;
+          frozen_[a][axis] = held_[a][axis];
+        }
+      }
+    }
+  }
+  void OnSensors(const RecordedSensors&) noexcept override {}
+  void OnState(const State&, const Observation&) noexcept override {}
+
+ private:
+  void FillBefore(std::int64_t step) noexcept {
+    while (filled_ < steps_.size() && steps_[filled_] < step) {
+      Currents& c = current_A_[filled_];
+      c = held_;
+      for (std::size_t a = 0; a < params_.ambs.size(); ++a) {
+        for (int axis = 0; axis < 2; ++axis) {
+          if (lost_at_[a][axis] < 0) continue;
+          const double t = static_cast<double>(steps_[filled_] - lost_at_[a][axis]) * step_s_;
+          c[a][axis] = frozen_[a][axis] * std::sqrt(FluxDecayForceScale(params_.ambs[a], t));
+        }
+      }
+      ++filled_;
+    }
+  }
+  const ModelParams& params_;
+  double step_s_;
+  std::vector<std::int64_t> steps_;
+  std::vector<Currents> current_A_;
+  std::size_t filled_ = 0;
+  Currents held_{};
+  Currents frozen_{};
+  std::array<std::array<std::int64_t, 2>, kMaxAmbs> lost_at_{};
+};
+
+const char* AxisName(int axis) {
+  return axis == 0 ? "x" : "y";
+}
+
+MeasurementChannel Channel(std::string column, MeasuredQuantity quantity, int index, int axis) {
+  MeasurementChannel c;
+  c.column = std::move(column);
+  c.quantity = quantity;
+  c.index = index;
+  c.axis = axis;
+  return c;
+}
+
+/// The columns in a fixed order (groups as listed in MeasureChannelGroups), whatever order the
+/// groups were asked for in, so one set of groups always gives one file.
+std::vector<MeasurementChannel> Channels(const ModelParams& p, const MeasureChannelGroups& g) {
+  std::vector<MeasurementChannel> out;
+  if (g.displacement) {
+    for (std::size_t i = 0; i < p.sensors.size(); ++i) {
+      for (int axis = 0; axis < 2; ++axis) {
+        out.push_back(Channel(fmt::format("{}_{}", AxisName(axis), p.sensors[i].name),
+                              MeasuredQuantity::kDisplacement, static_cast<int>(i), axis));
+      }
+    }
+  }
+  if (g.current) {
+    for (std::size_t a = 0; a < p.ambs.size(); ++a) {
+      for (int axis = 0; axis < 2; ++axis) {
+        out.push_back(Channel(fmt::format("i_{}_{}", p.ambs[a].name, AxisName(axis)),
+                              MeasuredQuantity::kCurrent, static_cast<int>(a), axis));
+      }
+    }
+  }
+  if (g.tdb_normal_force) {
+    for (std::size_t t = 0; t < p.tdbs.size(); ++t) {
+      out.push_back(Channel("f_" + p.tdbs[t].name, MeasuredQuantity::kTdbNormalForce,
+                            static_cast<int>(t), -1));
+    }
+  }
+  if (g.tdb_speed) {
+    for (std::size_t t = 0; t < p.tdbs.size(); ++t) {
+      out.push_back(
+          Channel("w_" + p.tdbs[t].name, MeasuredQuantity::kTdbSpeed, static_cast<int>(t), -1));
+    }
+  }
+  if (g.rotor_speed) out.push_back(Channel("w_rotor", MeasuredQuantity::kRotorSpeed, -1, -1));
+  // A TDB named "rotor" would collide with the rotor's speed column.
+  std::set<std::string> seen;
+  for (const MeasurementChannel& c : out) {
+    if (!seen.insert(c.column).second) {
+      throw std::invalid_argument("two channels would both be named '" + c.column +
+                                  "': rename a sensor, AMB or TDB");
+    }
+  }
+  if (out.empty()) throw std::invalid_argument("no channels to record");
+  return out;
+}
+
+double ObservedValue(const MeasurementChannel& c, const Observation& obs,
+                     const SensorReadings& readings) {
+  switch (c.quantity) {
+    case MeasuredQuantity::kDisplacement:
+      return readings.reading_m[c.index][c.axis];
+    case MeasuredQuantity::kTdbNormalForce:
+      return obs.tdb[c.index].normal_force_N;
+    case MeasuredQuantity::kTdbSpeed:
+      return obs.tdb[c.index].tdb_spin_rad_s;
+    case MeasuredQuantity::kRotorSpeed:
+      return obs.spin_speed_rad_s;
+    case MeasuredQuantity::kCurrent:
+      break;  // filled after the run (CurrentSampler)
+  }
+  return 0.0;
+}
+
+double NoiseStdDev(const MeasurementChannel& c, const MeasureOptions& o) {
+  switch (c.quantity) {
+    case MeasuredQuantity::kCurrent:
+      return o.current_noise_A;
+    case MeasuredQuantity::kTdbNormalForce:
+      return o.force_noise_N;
+    case MeasuredQuantity::kTdbSpeed:
+    case MeasuredQuantity::kRotorSpeed:
+      return o.speed_noise_rad_s;
+    case MeasuredQuantity::kDisplacement:
+      break;  // the truth config's own sensor noise
+  }
+  return 0.0;
+}
+
+/// One noise stream per channel, keyed by what it measures rather than by its column position,
+/// so leaving a group out (--channels) does not change the noise on the others.
+std::uint64_t StreamSeed(std::uint64_t seed, const MeasurementChannel& c) {
+  constexpr std::uint64_t kStreams = 64;
+  std::uint64_t id = 0;
+  switch (c.quantity) {
+    case MeasuredQuantity::kCurrent:
+      id = 1 + 2 * static_cast<std::uint64_t>(c.index) + static_cast<std::uint64_t>(c.axis);
+      break;
+    case MeasuredQuantity::kTdbNormalForce:
+      id = 16 + static_cast<std::uint64_t>(c.index);
+      break;
+    case MeasuredQuantity::kTdbSpeed:
+      id = 32 + static_cast<std::uint64_t>(c.index);
+      break;
+    case MeasuredQuantity::kRotorSpeed:
+      id = 48;
+      break;
+    case MeasuredQuantity::kDisplacement:
+      break;
+  }
+  static_assert(2 * kMaxAmbs < 16 && kMaxTdbs < 16, "stream ids overlap");
+  return seed * kStreams + id;
+}
+
+const char* QuantityName(MeasuredQuantity q) {
+  switch (q) {
+    case MeasuredQuantity::kDisplacement:
+      return "displacement";
+    case MeasuredQuantity::kCurrent:
+      return "current";
+    case MeasuredQuantity::kTdbNormalForce:
+      return "tdb_normal_force";
+    case MeasuredQuantity::kTdbSpeed:
+      return "tdb_speed";
+    case MeasuredQuantity::kRotorSpeed:
+      return "rotor_speed";
+  }
+  return "unknown";
+}
+
+/// A TOML float that reads back to the same double ("{}" is the shortest round trip; TOML needs
+/// a point or an exponent to make it a float).
+std::string TomlFloat(double value) {
+  std::string text = fmt::format("{}", value);
+  if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
+  return text;
+}
+
+std::string TomlString(const std::string& value) {
+  std::string out = "\"";
+  for (const char ch : value) {
+    if (ch == '"' || ch == '\\') {
+      out += '\\';
+      out += ch;
+    } else if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) {
+      out += fmt::format("\\u{:04X}", static_cast<unsigned char>(ch));
+    } else {
+      out += ch;
+    }
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+std::int64_t StepsPerSample(const SimulationParams& simulation, double rate_Hz) {
+  const double ratio = 1.0 / (rate_Hz * simulation.step_s);
+  const std::int64_t n = std::isfinite(ratio) ? std::llround(ratio) : 0;
+  // Same tolerance as the controller rate (ControllerSubsteps).
+  if (!(rate_Hz > 0.0) || n < 1 || std::abs(ratio - static_cast<double>(n)) > 1e-6 * ratio) {
+    throw std::invalid_argument(
+        fmt::format("sample rate {} Hz: the sample period must be a whole number of physics "
+                    "steps ({} s), e.g. {} Hz",
+                    rate_Hz, simulation.step_s,
+                    1.0 / (static_cast<double>(std::max<std::int64_t>(n, 1)) * simulation.step_s)));
+  }
+  return n;
+}
+
+SyntheticMeasurement MakeMeasuredRecord(const ModelParams& truth, const MeasureOptions& options) {
+  const double rate_Hz = options.rate_Hz > 0.0 ? options.rate_Hz : truth.controller.rate_Hz;
+  const std::int64_t every = StepsPerSample(truth.simulation, rate_Hz);
+  const double dt = truth.simulation.step_s;
+  const double period_s = static_cast<double>(every) * dt;
+
+  ModelParams params = truth;
+  // Observations then arrive exactly at the sample times.
+  params.simulation.output_interval_s = period_s;
+  const Model model = BuildModel(params);
+
+  SyntheticMeasurement out;
+  out.measurement.sample_rate_Hz = rate_Hz;
+  if (truth.trigger.enabled) {
+    out.measurement.trigger_time_s = truth.trigger.time_s;
+  } else {
+    out.measurement.detect_trigger = true;
+  }
+  out.measurement.channels = Channels(truth, options.channels);
+  const std::vector<MeasurementChannel>& channels = out.measurement.channels;
+
+  MeasuredRecord& record = out.record;
+  record.source = "truth run of " + (truth.name.empty() ? std::string("the rig") : truth.name);
+  for (const MeasurementChannel& c : channels) record.columns.push_back(c.column);
+  record.values.resize(channels.size());
+  const std::size_t expected_rows = static_cast<std::size_t>(model.total_steps / every) + 1;
+  record.time_s.reserve(expected_rows);
+  for (std::vector<double>& v : record.values) v.reserve(expected_rows);
+
+  // The emulator's own sensor model at the record's rate: a second instance beside the one the
+  // internal controller reads, with the same parameters (so the same statistics and seeds).
+  SensorEmulator sensors(truth.sensors, period_s);
+  SensorReadings readings;
+  CurrentSampler currents(model.params, dt);
+  std::int64_t sample = 0;
+  const auto on_output = [&](const Observation& obs) {
+    sensors.Sample(obs, &readings);
+    record.time_s.push_back(obs.time_s);
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      record.values[c].push_back(ObservedValue(channels[c], obs, readings));
+    }
+    currents.AddSample(sample * every);
+    ++sample;
+  };
+  const OfflineRunResult result = RunOffline(model, on_output, options.on_progress, &currents);
+  if (result.status != StepStatus::kOk) {
+    // The message names the time and the cause, with a state dump.
+    throw TruthRunDiverged("the truth run failed: " + result.failure_message);
+  }
+
+  const std::vector<Currents>& current_A = currents.Finish();
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    const MeasurementChannel& ch = channels[c];
+    if (ch.quantity == MeasuredQuantity::kCurrent) {
+      for (std::size_t row = 0; row < current_A.size(); ++row) {
+        record.values[c][row] = current_A[row][ch.index][ch.axis];
+      }
+    }
+    // Noise over every sample, before rows are dropped: a later --from-s cuts the same record.
+    const double sigma = NoiseStdDev(ch, options);
+    if (sigma > 0.0) {
+      PortableRandom noise(StreamSeed(options.seed, ch));
+      for (double& v : record.values[c]) v += sigma * noise.StandardNormalApprox();
+    }
+  }
+
+  // Half a physics step of slack: T0 given in decimal lands on the sample it names.
+  const auto first =
+      std::lower_bound(record.time_s.begin(), record.time_s.end(), options.from_s - 0.5 * dt);
+  const auto drop = first - record.time_s.begin();
+  if (first == record.time_s.end()) {
+    throw std::invalid_argument(fmt::format("no sample at or after {} s (the run ends at {} s)",
+                                            options.from_s,
+                                            record.time_s.empty() ? 0.0 : record.time_s.back()));
+  }
+  record.time_s.erase(record.time_s.begin(), first);
+  for (std::vector<double>& v : record.values) v.erase(v.begin(), v.begin() + drop);
+  return out;
+}
+
+std::string MeasurementTableToml(const ModelParams& truth, const MeasurementParams& m) {
+  std::string out = "[measurement]\n";
+  out += "sample_rate_Hz = " + TomlFloat(m.sample_rate_Hz) + "\n";
+  if (m.trigger_time_s) {
+    out += "trigger_time_s = " + TomlFloat(*m.trigger_time_s) + "\n";
+  } else {
+    out += "trigger = \"detect\"\n";
+  }
+  for (const MeasurementChannel& c : m.channels) {
+    out += "\n[[measurement.channel]]\n";
+    out += "column = " + TomlString(c.column) + "\n";
+    out += fmt::format("quantity = \"{}\"\n", QuantityName(c.quantity));
+    switch (c.quantity) {
+      case MeasuredQuantity::kDisplacement:
+        out += "sensor = " + TomlString(truth.sensors.at(c.index).name) + "\n";
+        break;
+      case MeasuredQuantity::kCurrent:
+        out += "amb = " + TomlString(truth.ambs.at(c.index).name) + "\n";
+        break;
+      case MeasuredQuantity::kTdbNormalForce:
+      case MeasuredQuantity::kTdbSpeed:
+        out += "tdb = " + TomlString(truth.tdbs.at(c.index).name) + "\n";
+        break;
+      case MeasuredQuantity::kRotorSpeed:
+        break;
+    }
+    if (c.axis >= 0) out += fmt::format("axis = \"{}\"\n", AxisName(c.axis));
+  }
+  return out;
+}
+
+}  // namespace ambdrop

@@ -1,0 +1,13 @@
+#pragma once
+#include <cstddef>
+#include <vector>
+
+namespace ambdrop {
+
+/// Standard deviation of white measurement noise on a sampled signal, from its second
+/// differences (their variance is 6 sigma^2, and a smooth signal barely has any): robustly,
+/// 1.4826 * median |d2| / sqrt(6), so that impacts and steps do not count as noise.
+/// Rows [first, last) of `values`; 0 for fewer than 3.
+double NoiseSigma(const std::vector<double>& values, std::size_t first, std::size_t last);
+
+}  // namespace ambdrop

@@ -1,0 +1,55 @@
+#pragma once
+// Step b of `ambdrop fit`: how far the model's prediction is from the record, per channel, per
+// phase of the drop, and overall. Channels have different units, so the overall figure is the
+// RMS of each channel's residual over that channel's measured range (a relative error).
+#include <string>
+#include <vector>
+
+#include "io/config_measurement.hpp"
+#include "io/measured_csv.hpp"
+#include "tools/fit/simulate_on_record.hpp"
+
+namespace ambdrop {
+
+/// Record-time windows: before the trigger (the simulated lead), the impact phase (the first
+/// third of what follows the trigger, at most 0.1 s) and the settled phase (the last third,
+/// at most 0.1 s).
+struct FitWindows {
+  double start_s = 0.0;
+  double trigger_s = 0.0;
+  double impact_end_s = 0.0;
+  double settled_start_s = 0.0;
+  double end_s = 0.0;
+};
+
+struct ChannelResidual {
+  std::string column;
+  std::string description;  ///< "displacement de x"
+  double scale = 1.0;       ///< measured range (max - min) over the compared rows, SI
+  double rms = 0.0;         ///< over every compared row, SI
+  double rms_before = 0.0;  ///< NaN where the window has no compared row
+  double rms_impact = 0.0;
+  double rms_settled = 0.0;
+  std::size_t samples = 0;
+};
+
+struct ResidualReport {
+  FitWindows windows;
+  std::vector<ChannelResidual> channels;  ///< in measurement order
+  double overall = 0.0;                   ///< sqrt(mean over channels of (rms / scale)^2)
+};
+
+FitWindows WindowsOf(const MeasuredRecord& record, const SimulatedRecord& sim, double lead_s);
+
+/// Currents before the trigger are the run's inputs, not predictions: they are not compared.
+/// A run that stopped early is compared over what it simulated.
+ResidualReport ComputeResiduals(const ModelParams& params, const MeasurementParams& measurement,
+                                const MeasuredRecord& record, const SimulatedRecord& sim,
+                                double lead_s);
+
+/// The residual series of channel c (measured - model), NaN where not compared.
+std::vector<double> ResidualSeries(const MeasurementParams& measurement,
+                                   const MeasuredRecord& record, const SimulatedRecord& sim,
+                                   std::size_t c);
+
+}  // namespace ambdrop

@@ -1,0 +1,248 @@
+#include "tools/fit/simulate_on_record.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "controller_if/power_state.hpp"
+#include "controller_if/sensor_emulator.hpp"
+#include "controller_if/state_dump.hpp"
+#include "rt_core/amb_force.hpp"
+#include "rt_core/model.hpp"
+
+namespace ambdrop {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Linear interpolation of column `c` at time t (held beyond the ends).
+double ValueAt(const MeasuredRecord& r, int c, double t) {
+  const std::vector<double>& ts = r.time_s;
+  const std::vector<double>& v = r.values[c];
+  if (t <= ts.front()) return v.front();
+  if (t >= ts.back()) return v.back();
+  const auto hi = std::upper_bound(ts.begin(), ts.end(), t);
+  const std::size_t j = static_cast<std::size_t>(hi - ts.begin());
+  const double w = (t - ts[j - 1]) / (ts[j] - ts[j - 1]);
+  return v[j - 1] + w * (v[j] - v[j - 1]);
+}
+
+// Least-squares slope and value at t0 of column c over the samples within +-half of t0.
+std::pair<double, double> LocalLine(const MeasuredRecord& r, int c, double t0, double half) {
+  double n = 0, st = 0, sv = 0, stt = 0, stv = 0;
+  for (std::size_t j = 0; j < r.time_s.size(); ++j) {
+    const double dt = r.time_s[j] - t0;
+    if (std::abs(dt) > half) continue;
+    const double v = r.values[c][j];
+    n += 1;
+    st += dt;
+    sv += v;
+    stt += dt * dt;
+    stv += dt * v;
+  }
+  if (n < 2) return {ValueAt(r, c, t0), 0.0};
+  const double det = n * stt - st * st;
+  if (det <= 0) return {sv / n, 0.0};
+  const double slope = (n * stv - st * sv) / det;
+  return {(sv - slope * st) / n, slope};
+}
+
+}  // namespace
+
+double RecordTriggerTime(const MeasurementParams& m, const MeasuredRecord& r) {
+  if (m.trigger_time_s) return *m.trigger_time_s;
+  std::vector<int> currents;
+  for (const MeasurementChannel& ch : m.channels) {
+    if (ch.quantity == MeasuredQuantity::kCurrent) currents.push_back(r.Column(ch.column));
+  }
+  if (currents.empty()) {
+    throw std::runtime_error(
+        "measurement.trigger = \"detect\" needs current channels; give trigger_time_s");
+  }
+  // The levitated baseline and its noise from the record's first tenth.
+  const std::size_t rows = r.time_s.size();
+  const std::size_t quiet = std::max<std::size_t>(rows / 10, 2);
+  double best = std::numeric_limits<double>::infinity();
+  for (const int c : currents) {
+    const std::vector<double>& v = r.values[c];
+    double mean = 0, var = 0;
+    for (std::size_t j = 0; j < quiet; ++j) mean += v[j];
+    mean /= static_cast<double>(quiet);
+    for (std::size_t j = 0; j < quiet; ++j) var += (v[j] - mean) * (v[j] - mean);
+    const double sigma = std::sqrt(var / static_cast<double>(quiet));
+    // Far out (the current is going away) and never back: then walk back to where it left
+    // the noise band.
+    const double far = std::max(8 * sigma, 0.2 * std::abs(mean));
+    const double band = 3 * sigma;
+    std::size_t last_near = rows;  // last row within `far` of the baseline
+    for (std::size_t j = rows; j-- > quiet;) {
+      if (std::abs(v[j] - mean) <= far) {
+        last_near = j;
+        break;
+      }
+    }
+    if (last_near + 1 >= rows) continue;  // this current never leaves
+    std::size_t j = last_near;
+    while (j > quiet && std::abs(v[j] - mean) > band) --j;
+    best = std::min(best, r.time_s[j]);
+  }
+  if (!std::isfinite(best)) {
+    throw std::runtime_error(
+        "measurement.trigger = \"detect\": no current leaves its levitated level in the record; "
+        "give trigger_time_s");
+  }
+  return best;
+}
+
+SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementParams& m,
+                                 const MeasuredRecord& r, const RecordRunOptions& options) {
+  SimulatedRecord out;
+  out.trigger_time_s = RecordTriggerTime(m, r);
+  const double t_start = std::max(r.time_s.front(), out.trigger_time_s - options.lead_s);
+  const double t_end = r.time_s.back();
+  if (out.trigger_time_s >= t_end) {
+    throw std::runtime_error(
+        fmt::format("the trigger ({} s) is not inside the record ({} s to {} s)",
+                    out.trigger_time_s, r.time_s.front(), t_end));
+  }
+
+  ModelParams params = declared;
+  if (options.step_s > 0) params.simulation.step_s = options.step_s;
+  const double dt = params.simulation.step_s;
+  params.simulation.duration_s = t_end - t_start + dt;
+  params.simulation.initial_position = InitialPosition::kCentred;
+  params.trigger.enabled = true;
+  params.trigger.time_s = out.trigger_time_s - t_start;
+  params.trigger.restore_time_s = -1.0;
+  params.controller.kind = ControllerKind::kNone;
+  for (AmbParams& a : params.ambs) a.current_profile.clear();
+  // The prediction is the expected reading: noise and quantisation are not the model's to fit.
+  for (SensorParams& s : params.sensors) {
+    s.noise.enabled = false;
+    s.quantisation_m = 0.0;
+  }
+  int rotor_speed_column = -1;
+  for (const MeasurementChannel& ch : m.channels) {
+    if (ch.quantity == MeasuredQuantity::kRotorSpeed) rotor_speed_column = r.Column(ch.column);
+  }
+  const double configured_spin = params.simulation.spin_speed_rad_s;
+  if (rotor_speed_column >= 0) {
+    params.simulation.spin_speed_rad_s = ValueAt(r, rotor_speed_column, t_start);
+  }
+  const Model model = BuildModel(params);
+  const int n = model.modes();
+
+  // Measured currents by AMB axis; the rest carry the static load.
+  std::array<std::array<int, 2>, kMaxAmbs> current_column;
+  for (auto& a : current_column) a = {-1, -1};
+  for (const MeasurementChannel& ch : m.channels) {
+    if (ch.quantity == MeasuredQuantity::kCurrent) {
+      current_column[ch.index][ch.axis] = r.Column(ch.column);
+    }
+  }
+  const ControlInput static_load = StaticLoadInput(model);
+  ControlInput input = static_load;
+  const auto measured_currents = [&](double t_record) {
+    for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+      for (int axis = 0; axis < 2; ++axis) {
+        const int c = current_column[a][axis];
+        input.amb[a].current_A[axis] =
+            c >= 0 ? ValueAt(r, c, t_record) : static_load.amb[a].current_A[axis];
+      }
+    }
+  };
+  measured_currents(t_start);
+
+  // Initial state: modal coordinates that best explain the displacement channels.
+  Simulator sim(model);
+  State state = sim.InitialState(input);
+  std::vector<Eigen::RowVectorXd> rows_q;
+  std::vector<double> pos, vel;
+  const double half_window = std::max(4.0 * r.SampleInterval(), 0.25e-3);
+  for (const MeasurementChannel& ch : m.channels) {
+    if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
+    const SensorParams& s = model.params.sensors[ch.index];
+    const auto [value, slope] = LocalLine(r, r.Column(ch.column), t_start, half_window);
+    rows_q.push_back(model.sensor_shapes[ch.index].row(ch.axis) * s.gain);
+    pos.push_back(value - s.offset_m);
+    vel.push_back(slope);
+  }
+  if (!rows_q.empty()) {
+    Eigen::MatrixXd a(static_cast<Eigen::Index>(rows_q.size()), n);
+    for (std::size_t i = 0; i < rows_q.size(); ++i) a.row(static_cast<Eigen::Index>(i)) = rows_q[i];
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> fit(a);
+    const Eigen::Map<const Eigen::VectorXd> p(pos.data(), static_cast<Eigen::Index>(pos.size()));
+    const Eigen::Map<const Eigen::VectorXd> v(vel.data(), static_cast<Eigen::Index>(vel.size()));
+    // Minimum norm: modes the sensors cannot see start at rest.
+    state.y.head(n) = fit.solve(p);
+    state.y.segment(n, n) = fit.solve(v);
+  }
+  state.y(model.spin_angle_index()) = configured_spin * t_start;
+
+  // Rows of the record to predict, and the step each falls on.
+  const std::size_t total_rows = r.time_s.size();
+  out.first_row = static_cast<std::size_t>(
+      std::lower_bound(r.time_s.begin(), r.time_s.end(), t_start) - r.time_s.begin());
+  out.values.assign(m.channels.size(), std::vector<double>(total_rows, kNaN));
+  SensorEmulator sensors(model.params.sensors, r.SampleInterval());
+  PowerState power(model);
+  const PowerEvent failure = ScheduledFailure(model);
+  Observation obs;
+  SensorReadings readings;
+  std::size_t row = out.first_row;
+  const auto record_row = [&](std::size_t j) {
+    sim.Observe(state, &obs);
+    sensors.Sample(obs, &readings);
+    for (std::size_t c = 0; c < m.channels.size(); ++c) {
+      const MeasurementChannel& ch = m.channels[c];
+      double v = kNaN;
+      switch (ch.quantity) {
+        case MeasuredQuantity::kDisplacement:
+          v = readings.reading_m[ch.index][ch.axis];
+          break;
+        case MeasuredQuantity::kCurrent:
+          // The coil's control current: what flows, fading with the flux after power loss.
+          v = input.amb[ch.index].current_A[ch.axis] *
+              std::sqrt(std::max(0.0, input.amb[ch.index].force_scale[ch.axis]));
+          break;
+        case MeasuredQuantity::kTdbNormalForce:
+          v = obs.tdb[ch.index].normal_force_N;
+          break;
+        case MeasuredQuantity::kTdbSpeed:
+          v = obs.tdb[ch.index].tdb_spin_rad_s;
+          break;
+        case MeasuredQuantity::kRotorSpeed:
+          v = obs.spin_speed_rad_s;
+          break;
+      }
+      out.values[c][j] = v;
+    }
+  };
+  while (row < total_rows) {
+    const std::int64_t k = state.step_index;
+    const double t_record = t_start + static_cast<double>(k) * dt;
+    // Rows on this step (the nearest step to their time) are predicted from this state.
+    while (row < total_rows && r.time_s[row] < t_record + 0.5 * dt) {
+      record_row(row);
+      ++row;
+      ++out.rows;
+    }
+    if (row >= total_rows) break;
+    if (k == model.trigger_step) power.Apply(failure, k, input);
+    if (k < model.trigger_step) measured_currents(t_record);
+    power.Fill(k, &input);
+    const StepStatus status = sim.Step(&state, input);
+    if (status != StepStatus::kOk) {
+      out.status = status;
+      out.failure = DescribeFailure(model, status, state);
+      break;
+    }
+  }
+  return out;
+}
+
+}  // namespace ambdrop

@@ -1,0 +1,48 @@
+#pragma once
+// Step a of `ambdrop fit`: the declared model, driven by the record's measured inputs, on the
+// record's time base. The run starts a short lead before the trigger from the state the
+// displacement channels show then: AMB currents drive an open-loop, unstable plant, so a run
+// started long before the trigger would drift away from the measurement on its own.
+#include <string>
+#include <vector>
+
+#include "io/config_measurement.hpp"
+#include "io/measured_csv.hpp"
+#include "rt_core/model_params.hpp"
+#include "rt_core/simulator.hpp"
+
+namespace ambdrop {
+
+struct RecordRunOptions {
+  double lead_s = 2e-3;  ///< simulated time before the trigger
+  /// Model step; 0: the config's. The record's samples fall on the nearest step.
+  double step_s = 0.0;
+};
+
+/// What the model says each measured channel should read.
+struct SimulatedRecord {
+  double trigger_time_s = 0.0;  ///< record time
+  std::size_t first_row = 0;    ///< first row simulated; rows before it are NaN
+  std::size_t rows = 0;         ///< rows simulated (first_row + rows <= record rows)
+  /// values[c][row] for channel c of MeasurementParams::channels, NaN where not simulated.
+  std::vector<std::vector<double>> values;
+  StepStatus status = StepStatus::kOk;
+  std::string failure;  ///< why the run stopped early, with a state dump; "" if it did not
+};
+
+/// The trigger time: given, or where every measured current starts to fall away from its
+/// pre-trigger level for good (needs current channels). Throws std::runtime_error if neither.
+double RecordTriggerTime(const MeasurementParams& measurement, const MeasuredRecord& record);
+
+/// Runs `params` on the record: model time 0 is record time max(t_first, trigger - lead).
+/// Before the trigger the measured currents drive the AMBs (an AMB axis without a current
+/// channel carries its static load); at the trigger the rig's power failure ([trigger] ambs and
+/// axes) happens. The initial rotor position and velocity are the least-squares fit of the
+/// modal coordinates to the displacement channels around the start (through the sensors' gain
+/// and offset), the spin speed is the rotor_speed channel's (or the config's), and the spin
+/// angle is the config's speed times the start time (a rig spinning steadily from time 0).
+/// Predicted readings come through the declared sensor model without noise or quantisation.
+SimulatedRecord SimulateOnRecord(const ModelParams& params, const MeasurementParams& measurement,
+                                 const MeasuredRecord& record, const RecordRunOptions& options);
+
+}  // namespace ambdrop

@@ -1,0 +1,132 @@
+#include "tools/fit_command.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <optional>
+
+#include "io/config_loader.hpp"
+#include "io/json_writer.hpp"
+#include "io/measured_csv.hpp"
+#include "tools/exit_codes.hpp"
+#include "tools/fit/effect_selection.hpp"
+#include "tools/fit/fit_report.hpp"
+#include "tools/fit/residuals.hpp"
+
+namespace ambdrop {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Every channel's column is in the record, and the record is sampled as declared.
+void CheckRecord(const MeasurementParams& m, const MeasuredRecord& r, const std::string& config) {
+  std::string missing;
+  for (const MeasurementChannel& ch : m.channels) {
+    if (r.Column(ch.column) < 0) missing += " '" + ch.column + "'";
+  }
+  if (!missing.empty()) {
+    std::string have;
+    for (const std::string& c : r.columns) have += " '" + c + "'";
+    throw MeasuredRecordError(
+        fmt::format("{}: the columns{} of {}'s [measurement] are not in the record; it has:{}",
+                    r.source, missing, config, have));
+  }
+  const double rate = 1.0 / r.SampleInterval();
+  if (std::abs(rate / m.sample_rate_Hz - 1.0) > 0.01) {
+    throw MeasuredRecordError(
+        fmt::format("{}: sampled at {:.6g} Hz, but {}'s measurement.sample_rate_Hz is {:.6g} Hz",
+                    r.source, rate, config, m.sample_rate_Hz));
+  }
+}
+
+}  // namespace
+
+int RunFitCommand(const FitOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  LoadedConfig config;
+  MeasuredRecord record;
+  try {
+    config = LoadConfig(options.config_path, options.overrides);
+    if (!config.measurement) {
+      throw ConfigError(options.config_path +
+                        ": no [measurement] table: say which record column is which quantity "
+                        "(see io/config_measurement.hpp)");
+    }
+    record = ReadMeasuredCsv(options.measured_path);
+    CheckRecord(*config.measurement, record, options.config_path);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitConfig;
+  }
+  const MeasurementParams& m = *config.measurement;
+
+  RecordRunOptions run;
+  run.lead_s = options.lead_s;
+  std::optional<RecordCost> cost;
+  SimulatedRecord before_sim;
+  try {
+    cost.emplace(config.params, m, record, run);
+    before_sim = cost->Simulate(config.params);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitConfig;
+  }
+  if (before_sim.status != StepStatus::kOk && !options.quiet) {
+    fmt::print(stderr, "warning: the declared model stopped early on the record: {}\n",
+               before_sim.failure);
+  }
+
+  const std::vector<Effect> library = EffectLibrary(config.params);
+  SelectionRules rules;
+  rules.threads = options.threads;
+  rules.max_runs_per_start = options.max_runs_per_start;
+  rules.tolerance = options.tolerance;
+  const Selection selection = SelectEffects(*cost, library, cost->NoiseFloor(), rules);
+
+  std::vector<const Effect*> chosen;
+  for (const std::string& name : selection.chosen) {
+    for (const Effect& e : library) {
+      if (e.name == name) chosen.push_back(&e);
+    }
+  }
+  const ModelParams after_params = WithEffects(config.params, chosen, selection.chosen_fit.values);
+  const SimulatedRecord after_sim = cost->Simulate(after_params);
+
+  FitOutcome outcome;
+  outcome.config_path = options.config_path;
+  outcome.measured_path = options.measured_path;
+  outcome.before = ComputeResiduals(config.params, m, record, before_sim, run.lead_s);
+  outcome.after = ComputeResiduals(config.params, m, record, after_sim, run.lead_s);
+  outcome.selection = &selection;
+  outcome.library = &library;
+  outcome.chosen = chosen;
+  outcome.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  try {
+    const fs::path out(options.out_dir);
+    fs::create_directories(out);
+    WriteTextFile(out / "fit.json", FitJson(outcome, config.params, m));
+    WriteFitReport(out, outcome, config.params, m, record, before_sim, after_sim);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitError;
+  }
+  if (!options.quiet) {
+    fmt::print("{}: {} ({})\n", options.measured_path, selection.verdict, selection.reason);
+    fmt::print("  overall relative RMS {:.4g} -> {:.4g}; chosen: {}\n", selection.rms_before,
+               selection.rms_after,
+               selection.chosen.empty() ? std::string("none")
+                                        : fmt::format("{}", fmt::join(selection.chosen, ", ")));
+    for (const ParameterEstimate& p : selection.chosen_fit.parameters) {
+      fmt::print("    {} {} = {:.6g} +- {:.2g}\n", p.effect, p.name, p.value, p.sigma);
+    }
+    fmt::print("  {} candidates in {:.1f} s; {}/fit.json, {}/report.md\n",
+               selection.candidates.size(), outcome.wall_time_s, options.out_dir, options.out_dir);
+  }
+  return kExitOk;
+}
+
+}  // namespace ambdrop

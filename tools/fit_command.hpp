@@ -1,0 +1,24 @@
+#pragma once
+#include <string>
+#include <vector>
+
+namespace ambdrop {
+
+struct FitOptions {
+  std::string config_path;             ///< the declared model, with a [measurement] table
+  std::string measured_path;           ///< the measured record (CSV)
+  std::vector<std::string> overrides;  ///< --set, on the declared model
+  std::string out_dir = "out";
+  double lead_s = 2e-3;  ///< simulated time before the trigger
+  int threads = 2;
+  int max_runs_per_start = 40;
+  double tolerance = 0.02;  ///< relative RMS within which model and record agree
+  bool quiet = false;
+};
+
+/// `ambdrop fit CONFIG --measured FILE --out DIR`: holds the declared model against a measured
+/// record (tools/fit/): residual per channel and phase, the library's effects fitted and
+/// chosen by error cut and BIC, and a verdict. Writes DIR/fit.json and DIR/report.md.
+int RunFitCommand(const FitOptions& options);
+
+}  // namespace ambdrop
