@@ -47,9 +47,9 @@ TEST(ConfigFourDof, Model3SelectsTheDahlRibbon) {
                                                 {"tdb.de.four_dof.dahl.threshold_scale=0.5"});
   const TdbParams& de = p.tdbs.at(0).name == "de" ? p.tdbs.at(0) : p.tdbs.at(1);
   EXPECT_EQ(de.four_dof.ribbon, RibbonLaw::kDahl);
-  EXPECT_DOUBLE_EQ(de.four_dof.dahl.slipping_threshold_N, 400.0);
+  EXPECT_DOUBLE_EQ(de.four_dof.dahl.slipping_threshold_N, 1000.0);
   EXPECT_DOUBLE_EQ(de.four_dof.dahl.threshold_scale, 0.5);
-  EXPECT_DOUBLE_EQ(de.four_dof.dahl.beta_per_m, 6.0e4);
+  EXPECT_DOUBLE_EQ(de.four_dof.dahl.beta_per_m, 1.0e6);
 }
 
 TEST(ConfigFourDof, SwitchesSelectTheLaws) {
