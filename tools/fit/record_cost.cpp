@@ -2,46 +2,119 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "tools/fit/noise_floor.hpp"
 
 namespace ambdrop {
+namespace {
+
+// Free fall across the smallest clearance, with margin, then a few milliseconds of the first
+// impact: the part of the drop a model predicts sample by sample.
+double EarlySeconds(const ModelParams& p) {
+  double c = 1e-3;
+  for (const TdbParams& t : p.tdbs) c = std::min(c, t.clearance_m);
+  const double g = p.gravity.enabled ? p.gravity.acceleration_m_s2 : 0.0;
+  const double fall = g > 0 ? std::sqrt(2.0 * c / g) : 5e-3;
+  return 1.5 * fall + 5e-3;
+}
+
+bool Smooth(MeasuredQuantity q) {
+  return q == MeasuredQuantity::kTdbSpeed || q == MeasuredQuantity::kRotorSpeed ||
+         q == MeasuredQuantity::kCurrent;
+}
+
+}  // namespace
 
 RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& measurement,
                        const MeasuredRecord& record, const RecordRunOptions& run,
                        std::size_t max_samples_per_channel)
     : declared_(declared), measurement_(measurement), record_(record), run_(run) {
   trigger_s_ = RecordTriggerTime(measurement, record);
-  const double start = std::max(record.time_s.front(), trigger_s_ - run.lead_s);
+  const bool closed = ClosedLoop(declared, run);
+  const double t0 = record.time_s.front();
+  const double t_end = record.time_s.back();
+  compare_from_s_ = closed ? t0 : std::max(t0, trigger_s_ - run.lead_s);
+  early_end_s_ = std::min(t_end, trigger_s_ + EarlySeconds(declared));
+  settled_from_s_ = t_end - std::min((t_end - trigger_s_) / 3.0, 0.1);
+  const double spin = declared.simulation.spin_speed_rad_s;
+  const std::size_t rows = record.time_s.size();
+  const auto first_row_at = [&](double t) {
+    return static_cast<std::size_t>(
+        std::lower_bound(record.time_s.begin(), record.time_s.end(), t) - record.time_s.begin());
+  };
+  const std::size_t start_row = first_row_at(compare_from_s_);
+  const std::size_t trigger_row = first_row_at(trigger_s_);
+  const std::size_t settled_row = first_row_at(settled_from_s_);
   for (std::size_t c = 0; c < measurement.channels.size(); ++c) {
     const MeasurementChannel& ch = measurement.channels[c];
     const int col = record.Column(ch.column);
+    const std::vector<double>& v = record.values[col];
     column_.push_back(col);
     range_.push_back(0.0);
-    // Currents before the trigger drive the run: they are inputs, not predictions.
-    const double from = ch.quantity == MeasuredQuantity::kCurrent ? trigger_s_ : start;
-    std::vector<std::size_t> rows;
-    for (std::size_t j = 0; j < record.time_s.size(); ++j) {
-      if (record.time_s[j] >= from) rows.push_back(j);
+    const bool current = ch.quantity == MeasuredQuantity::kCurrent;
+    // Sample-by-sample rows; currents before the trigger are inputs (open loop) or compared
+    // by their levitated mean and harmonics (closed loop).
+    const double from = current ? trigger_s_ : compare_from_s_;
+    const double to = Smooth(ch.quantity) ? t_end + 1.0 : early_end_s_;
+    std::vector<std::size_t> raw;
+    for (std::size_t j = 0; j < rows; ++j) {
+      if (record.time_s[j] >= from && record.time_s[j] < to) raw.push_back(j);
     }
-    if (rows.empty()) continue;
-    double lo = record.values[col][rows.front()], hi = lo;
-    for (const std::size_t j : rows) {
-      lo = std::min(lo, record.values[col][j]);
-      hi = std::max(hi, record.values[col][j]);
+    std::vector<Block> blocks;
+    if (current && closed && trigger_row > start_row + 4) {
+      // Mean, then 1X and 2X cosine and sine over the levitated rows.
+      const std::size_t n = trigger_row - start_row;
+      for (int k = 0; k <= 4; ++k) {
+        Block b{c, start_row, std::vector<double>(n), 0.0, 0.0, 0.0};
+        for (std::size_t i = 0; i < n; ++i) {
+          const double angle = spin * record.time_s[start_row + i] * (k <= 2 ? 1.0 : 2.0);
+          const double basis = k == 0 ? 1.0 : (k % 2 == 1 ? std::cos(angle) : std::sin(angle));
+          b.coefficients[i] = (k == 0 ? 1.0 : 2.0) * basis / static_cast<double>(n);
+        }
+        blocks.push_back(std::move(b));
+      }
+    }
+    if (!Smooth(ch.quantity) && settled_row < rows && settled_from_s_ > to) {
+      const std::size_t n = rows - settled_row;
+      blocks.push_back(
+          {c, settled_row, std::vector<double>(n, 1.0 / static_cast<double>(n)), 0.0, 0.0, 0.0});
+    }
+    if (raw.empty() && blocks.empty()) continue;
+    double lo = std::numeric_limits<double>::infinity();
+    double hi = -lo;
+    for (std::size_t j = start_row; j < rows; ++j) {
+      lo = std::min(lo, v[j]);
+      hi = std::max(hi, v[j]);
     }
     const double range = hi > lo ? hi - lo : 1.0;
     range_.back() = range;
-    const std::size_t stride =
-        (rows.size() + max_samples_per_channel - 1) / max_samples_per_channel;
-    std::vector<std::size_t> kept;
-    for (std::size_t i = 0; i < rows.size(); i += std::max<std::size_t>(stride, 1)) {
-      kept.push_back(rows[i]);
+    // The channel's weight is shared between its sample-by-sample part and its blocks.
+    const double parts = (raw.empty() ? 0.0 : 1.0) + static_cast<double>(blocks.size());
+    if (!raw.empty()) {
+      const std::size_t stride = std::max<std::size_t>(
+          1, (raw.size() + max_samples_per_channel - 1) / max_samples_per_channel);
+      std::vector<std::size_t> kept;
+      for (std::size_t i = 0; i < raw.size(); i += stride) kept.push_back(raw[i]);
+      const double weight = std::sqrt(1.0 / (parts * static_cast<double>(kept.size()))) / range;
+      for (const std::size_t j : kept) samples_.push_back({c, j, weight, range});
     }
-    const double weight = 1.0 / (range * std::sqrt(static_cast<double>(kept.size())));
-    for (const std::size_t j : kept) index_.push_back({c, j, weight, range});
+    for (Block& b : blocks) {
+      b.weight = std::sqrt(1.0 / parts) / range;
+      b.range = range;
+      b.measured = Apply(b, v);
+      blocks_.push_back(std::move(b));
+    }
     ++channels_;
   }
+}
+
+double RecordCost::Apply(const Block& b, const std::vector<double>& values) const {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < b.coefficients.size(); ++i) {
+    sum += b.coefficients[i] * values[b.first + i];
+  }
+  return sum;
 }
 
 double RecordCost::NoiseFloor() const {
@@ -62,14 +135,17 @@ SimulatedRecord RecordCost::Simulate(const ModelParams& params) const {
 }
 
 Eigen::VectorXd RecordCost::Residual(const SimulatedRecord& sim) const {
-  Eigen::VectorXd r(static_cast<Eigen::Index>(index_.size()));
-  for (std::size_t i = 0; i < index_.size(); ++i) {
-    const Sample& s = index_[i];
+  Eigen::VectorXd r(static_cast<Eigen::Index>(size()));
+  Eigen::Index i = 0;
+  for (const Sample& s : samples_) {
     const double model = sim.values[s.channel][s.row];
     const double measured = record_.values[column_[s.channel]][s.row];
     // Not reached (the run stopped): as far off as the channel's whole range.
-    r(static_cast<Eigen::Index>(i)) =
-        std::isfinite(model) ? (measured - model) * s.weight : s.range * s.weight;
+    r(i++) = std::isfinite(model) ? (measured - model) * s.weight : s.range * s.weight;
+  }
+  for (const Block& b : blocks_) {
+    const double model = Apply(b, sim.values[b.channel]);
+    r(i++) = std::isfinite(model) ? (b.measured - model) * b.weight : b.range * b.weight;
   }
   return r;
 }

@@ -1,8 +1,18 @@
 #pragma once
-// The fit's cost: the residual of a model against the record as one vector, each compared
-// sample of channel c divided by that channel's measured range and by sqrt(samples of c), so
-// that its squared norm is the sum over channels of (rms_c / range_c)^2: channels in different
-// units weigh alike, and the vector's length is the same for every model tried.
+// The fit's cost: the residual of a model against the record as one vector. A drop is chaotic
+// after its first impacts: two runs a hair apart bounce differently, so comparing the bouncing
+// sample by sample measures chaos, not the model. The cost compares what is deterministic:
+//  - sample by sample, everything before the trigger and up to just after the first impact
+//    (free fall and first contact: `early_s` after the trigger), and speeds and currents
+//    throughout (spin-up and the flux's decay are smooth);
+//  - except currents before the trigger: a controller answers its sensors' noise, which no
+//    model predicts sample by sample, so there their mean and synchronous (1X, 2X) content over
+//    the levitated time are compared;
+//  - for displacements and forces after the first impact, their mean over the settled phase
+//    (where the rotor rests on its TDBs).
+// Each channel's part is divided by its measured range and by the square root of its count, so
+// that the squared norm is the sum over channels of relative mean-square errors: channels in
+// different units weigh alike, and the vector's length is the same for every model tried.
 #include <Eigen/Core>
 #include <cstddef>
 #include <vector>
@@ -25,7 +35,7 @@ class RecordCost {
   /// The residual vector of `params` (a copy of the declared ones with effects applied). A run
   /// that stops early scores every sample it did not reach as a full range off.
   Eigen::VectorXd Residual(const ModelParams& params) const;
-  /// The same for the run already made.
+  /// The same for a run already made.
   Eigen::VectorXd Residual(const SimulatedRecord& sim) const;
   SimulatedRecord Simulate(const ModelParams& params) const;
 
@@ -33,8 +43,11 @@ class RecordCost {
   /// (tools/fit/noise_floor.hpp, over the whole record) over its range, as in the cost.
   double NoiseFloor() const;
 
-  std::size_t size() const { return index_.size(); }
+  std::size_t size() const { return samples_.size() + blocks_.size(); }
   int channels() const { return channels_; }
+  double compare_from_s() const { return compare_from_s_; }
+  double early_end_s() const { return early_end_s_; }
+  double settled_from_s() const { return settled_from_s_; }
   const ModelParams& declared() const { return declared_; }
   const MeasurementParams& measurement() const { return measurement_; }
   const MeasuredRecord& record() const { return record_; }
@@ -45,16 +58,29 @@ class RecordCost {
   struct Sample {
     std::size_t channel;
     std::size_t row;
-    double weight;  // 1 / (range * sqrt(n))
-    double range;   // the channel's measured range
+    double weight;
+    double range;
   };
+  struct Block {  // sum over rows [first, first + coefficients.size()) of coefficient * value
+    std::size_t channel;
+    std::size_t first;
+    std::vector<double> coefficients;
+    double weight;
+    double range;
+    double measured;
+  };
+  double Apply(const Block& b, const std::vector<double>& values) const;
   const ModelParams& declared_;
   const MeasurementParams& measurement_;
   const MeasuredRecord& record_;
   RecordRunOptions run_;
   double trigger_s_ = 0.0;
+  double compare_from_s_ = 0.0;
+  double early_end_s_ = 0.0;
+  double settled_from_s_ = 0.0;
   int channels_ = 0;
-  std::vector<Sample> index_;
+  std::vector<Sample> samples_;
+  std::vector<Block> blocks_;
   std::vector<int> column_;    // record column per measurement channel
   std::vector<double> range_;  // per measurement channel; 0 if not compared
 };

@@ -21,10 +21,10 @@ struct Accumulator {
 
 }  // namespace
 
-FitWindows WindowsOf(const MeasuredRecord& r, const SimulatedRecord& sim, double lead_s) {
+FitWindows WindowsOf(const MeasuredRecord& r, const SimulatedRecord& sim, double start_s) {
   FitWindows w;
   w.trigger_s = sim.trigger_time_s;
-  w.start_s = std::max(r.time_s.front(), w.trigger_s - lead_s);
+  w.start_s = start_s;
   w.end_s = r.time_s.back();
   const double after = w.end_s - w.trigger_s;
   const double phase = std::min(after / 3.0, 0.1);
@@ -39,7 +39,10 @@ std::vector<double> ResidualSeries(const MeasurementParams& m, const MeasuredRec
   const std::vector<double>& measured = r.values[r.Column(ch.column)];
   std::vector<double> e(r.time_s.size(), kNaN);
   for (std::size_t j = sim.first_row; j < sim.first_row + sim.rows; ++j) {
-    if (ch.quantity == MeasuredQuantity::kCurrent && r.time_s[j] < sim.trigger_time_s) continue;
+    if (!sim.closed_loop && ch.quantity == MeasuredQuantity::kCurrent &&
+        r.time_s[j] < sim.trigger_time_s) {
+      continue;
+    }
     e[j] = measured[j] - sim.values[c][j];
   }
   return e;
@@ -47,12 +50,10 @@ std::vector<double> ResidualSeries(const MeasurementParams& m, const MeasuredRec
 
 ResidualReport ComputeResiduals(const ModelParams& params, const MeasurementParams& m,
                                 const MeasuredRecord& r, const SimulatedRecord& sim,
-                                double lead_s) {
+                                double start_s) {
   ResidualReport report;
-  report.windows = WindowsOf(r, sim, lead_s);
+  report.windows = WindowsOf(r, sim, start_s);
   const FitWindows& w = report.windows;
-  double sum_relative = 0.0;
-  int counted = 0;
   for (std::size_t c = 0; c < m.channels.size(); ++c) {
     const std::vector<double> e = ResidualSeries(m, r, sim, c);
     const std::vector<double>& measured = r.values[r.Column(m.channels[c].column)];
@@ -78,13 +79,9 @@ ResidualReport ComputeResiduals(const ModelParams& params, const MeasurementPara
     cr.rms_impact = impact.Rms();
     cr.rms_settled = settled.Rms();
     cr.scale = (all.n > 0 && hi > lo) ? hi - lo : 1.0;
-    if (all.n > 0) {
-      sum_relative += (cr.rms / cr.scale) * (cr.rms / cr.scale);
-      ++counted;
-    }
     report.channels.push_back(cr);
   }
-  report.overall = counted > 0 ? std::sqrt(sum_relative / counted) : kNaN;
+  report.overall = kNaN;
   return report;
 }
 

@@ -36,16 +36,19 @@ struct ChannelResidual {
 struct ResidualReport {
   FitWindows windows;
   std::vector<ChannelResidual> channels;  ///< in measurement order
-  double overall = 0.0;                   ///< sqrt(mean over channels of (rms / scale)^2)
+  double overall = 0.0;  ///< the fit's overall relative RMS (RecordCost), set by the caller
 };
 
-FitWindows WindowsOf(const MeasuredRecord& record, const SimulatedRecord& sim, double lead_s);
+/// `start_s`: where the comparison starts (RecordCost::compare_from_s).
+FitWindows WindowsOf(const MeasuredRecord& record, const SimulatedRecord& sim, double start_s);
 
-/// Currents before the trigger are the run's inputs, not predictions: they are not compared.
-/// A run that stopped early is compared over what it simulated.
+/// Per channel and phase, sample by sample (what a person reads). Open loop, currents before
+/// the trigger are the run's inputs, not predictions: they are not compared. A run that stopped
+/// early is compared over what it simulated. `overall` is left for the caller to set from the
+/// fit's cost (RecordCost), which is what the fit judges by.
 ResidualReport ComputeResiduals(const ModelParams& params, const MeasurementParams& measurement,
                                 const MeasuredRecord& record, const SimulatedRecord& sim,
-                                double lead_s);
+                                double start_s);
 
 /// The residual series of channel c (measured - model), NaN where not compared.
 std::vector<double> ResidualSeries(const MeasurementParams& measurement,

@@ -13,6 +13,7 @@
 #include "controller_if/state_dump.hpp"
 #include "rt_core/amb_force.hpp"
 #include "rt_core/model.hpp"
+#include "tools/fit/measured_record_maker.hpp"
 
 namespace ambdrop {
 namespace {
@@ -98,10 +99,77 @@ double RecordTriggerTime(const MeasurementParams& m, const MeasuredRecord& r) {
   return best;
 }
 
+bool ClosedLoop(const ModelParams& params, const RecordRunOptions& options) {
+  return options.pre_trigger == PreTrigger::kAuto &&
+         params.controller.kind == ControllerKind::kInternalPid;
+}
+
+namespace {
+
+SimulatedRecord SimulateClosedLoop(const ModelParams& declared, const MeasurementParams& m,
+                                   const MeasuredRecord& r, const RecordRunOptions& options,
+                                   double trigger_s) {
+  SimulatedRecord out;
+  out.trigger_time_s = trigger_s;
+  out.closed_loop = true;
+  ModelParams params = declared;
+  if (options.step_s > 0) params.simulation.step_s = options.step_s;
+  const double dt = params.simulation.step_s;
+  params.simulation.duration_s = r.time_s.back() + 2 * dt;
+  params.trigger.enabled = true;
+  params.trigger.time_s = trigger_s;
+  params.trigger.restore_time_s = -1.0;
+  for (SensorParams& s : params.sensors) {
+    s.noise.enabled = false;
+    s.quantisation_m = 0.0;
+  }
+  // Sampled on the step grid nearest the record's rate.
+  const double steps = std::max(1.0, std::round(r.SampleInterval() / dt));
+  MeasureOptions sampling;
+  sampling.rate_Hz = 1.0 / (steps * dt);
+  out.values.assign(m.channels.size(), std::vector<double>(r.time_s.size(), kNaN));
+  SyntheticMeasurement made;
+  try {
+    made = MakeMeasuredRecord(params, sampling);
+  } catch (const TruthRunDiverged& e) {
+    out.status = StepStatus::kNonFinite;
+    out.failure = e.what();
+    return out;
+  }
+  std::vector<int> column(m.channels.size(), -1);
+  for (std::size_t c = 0; c < m.channels.size(); ++c) {
+    const MeasurementChannel& want = m.channels[c];
+    for (std::size_t k = 0; k < made.measurement.channels.size(); ++k) {
+      const MeasurementChannel& have = made.measurement.channels[k];
+      if (have.quantity == want.quantity && have.index == want.index && have.axis == want.axis) {
+        column[c] = static_cast<int>(k);
+      }
+    }
+  }
+  const double period = steps * dt;
+  const std::size_t made_rows = made.record.time_s.size();
+  for (std::size_t j = 0; j < r.time_s.size(); ++j) {
+    const double k = std::round(r.time_s[j] / period);
+    if (k < 0 || k >= static_cast<double>(made_rows)) continue;
+    for (std::size_t c = 0; c < m.channels.size(); ++c) {
+      if (column[c] >= 0) {
+        out.values[c][j] = made.record.values[column[c]][static_cast<std::size_t>(k)];
+      }
+    }
+    if (out.rows == 0) out.first_row = j;
+    ++out.rows;
+  }
+  return out;
+}
+
+}  // namespace
+
 SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementParams& m,
                                  const MeasuredRecord& r, const RecordRunOptions& options) {
+  const double trigger_s = RecordTriggerTime(m, r);
+  if (ClosedLoop(declared, options)) return SimulateClosedLoop(declared, m, r, options, trigger_s);
   SimulatedRecord out;
-  out.trigger_time_s = RecordTriggerTime(m, r);
+  out.trigger_time_s = trigger_s;
   const double t_start = std::max(r.time_s.front(), out.trigger_time_s - options.lead_s);
   const double t_end = r.time_s.back();
   if (out.trigger_time_s >= t_end) {

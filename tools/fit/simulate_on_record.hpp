@@ -13,8 +13,17 @@
 
 namespace ambdrop {
 
+/// What drives the AMBs before the trigger.
+enum class PreTrigger {
+  /// The declared controller if the config has one (closed loop from the record's start: the
+  /// measured currents are then predictions to compare), else the measured currents.
+  kAuto,
+  kMeasuredCurrents,  ///< always the measured currents, from `lead_s` before the trigger
+};
+
 struct RecordRunOptions {
-  double lead_s = 2e-3;  ///< simulated time before the trigger
+  PreTrigger pre_trigger = PreTrigger::kAuto;
+  double lead_s = 2e-3;  ///< open loop: simulated time before the trigger
   /// Model step; 0: the config's. The record's samples fall on the nearest step.
   double step_s = 0.0;
 };
@@ -22,6 +31,7 @@ struct RecordRunOptions {
 /// What the model says each measured channel should read.
 struct SimulatedRecord {
   double trigger_time_s = 0.0;  ///< record time
+  bool closed_loop = false;     ///< the currents are predictions before the trigger too
   std::size_t first_row = 0;    ///< first row simulated; rows before it are NaN
   std::size_t rows = 0;         ///< rows simulated (first_row + rows <= record rows)
   /// values[c][row] for channel c of MeasurementParams::channels, NaN where not simulated.
@@ -34,7 +44,14 @@ struct SimulatedRecord {
 /// pre-trigger level for good (needs current channels). Throws std::runtime_error if neither.
 double RecordTriggerTime(const MeasurementParams& measurement, const MeasuredRecord& record);
 
-/// Runs `params` on the record: model time 0 is record time max(t_first, trigger - lead).
+/// Whether the run is closed loop (the declared controller levitates the rotor until the
+/// trigger) for these params and options.
+bool ClosedLoop(const ModelParams& params, const RecordRunOptions& options);
+
+/// Closed loop: the declared rig and controller run from time 0, as `ambdrop sim` would, with
+/// the power failing at the record's trigger, sampled at the record's times (each row takes
+/// the sample nearest to it); every channel, currents included, is a prediction.
+/// Open loop: model time 0 is record time max(t_first, trigger - lead).
 /// Before the trigger the measured currents drive the AMBs (an AMB axis without a current
 /// channel carries its static load); at the trigger the rig's power failure ([trigger] ambs and
 /// axes) happens. The initial rotor position and velocity are the least-squares fit of the
