@@ -149,12 +149,29 @@ EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& e
       jp.col(i) /= slope;
     }
   }
+  // Parameters the record does not move (a bound, a delay between samples) are left out of
+  // the covariance rather than making it singular.
+  std::vector<Eigen::Index> live;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!at_bound[static_cast<std::size_t>(i)] && jp.col(i).norm() > 0.0) live.push_back(i);
+  }
   const double dof =
       std::max<double>(1.0, static_cast<double>(cost.size()) - static_cast<double>(n));
-  const Eigen::MatrixXd jtj = jp.transpose() * jp;
-  const Eigen::FullPivLU<Eigen::MatrixXd> lu(jtj);
   Eigen::MatrixXd cov = Eigen::MatrixXd::Constant(n, n, kNaN);
-  if (lu.isInvertible()) cov = lu.inverse() * (fit.sse / dof);
+  if (!live.empty()) {
+    const Eigen::Index m = static_cast<Eigen::Index>(live.size());
+    Eigen::MatrixXd jl(jp.rows(), m);
+    for (Eigen::Index k = 0; k < m; ++k) jl.col(k) = jp.col(live[static_cast<std::size_t>(k)]);
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(jl.transpose() * jl);
+    if (lu.isInvertible()) {
+      const Eigen::MatrixXd c = lu.inverse() * (fit.sse / dof);
+      for (Eigen::Index a = 0; a < m; ++a) {
+        for (Eigen::Index b = 0; b < m; ++b) {
+          cov(live[static_cast<std::size_t>(a)], live[static_cast<std::size_t>(b)]) = c(a, b);
+        }
+      }
+    }
+  }
 
   fit.values = at.Values(best_z);
   for (std::size_t i = 0; i < flat.size(); ++i) {
