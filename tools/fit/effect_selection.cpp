@@ -36,7 +36,8 @@ void ParallelFor(std::size_t count, int threads, const Job& job) {
 }  // namespace
 
 double AgreementLimit(const Selection& s, const SelectionRules& rules) {
-  return std::max(rules.tolerance, rules.explained_over_floor * s.noise_floor);
+  // Noise and model error add in quadrature.
+  return std::hypot(rules.explained_over_floor * s.noise_floor, rules.tolerance);
 }
 
 double OverallRms(const RecordCost& cost, double sse) {

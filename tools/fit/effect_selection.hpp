@@ -14,8 +14,9 @@ namespace ambdrop {
 struct SelectionRules {
   double min_cut = 1.25;        ///< rms_before / rms_after an accepted effect must reach
   double min_delta_bic = 10.0;  ///< and how much it must lower the BIC
-  /// Left within this many times the noise floor, the residual is explained.
-  double explained_over_floor = 2.0;
+  /// Left within this many times the noise floor (in quadrature with the tolerance), the
+  /// residual is explained: the floor is itself estimated from the record.
+  double explained_over_floor = 1.25;
   /// An overall relative RMS (RecordCost) within which model and record agree anyway: noise,
   /// quantisation and a finer step in the record leave about 3e-4 with the true model
   /// (clean records of the PID rig at 5 and 2.5 us steps); six times that.
@@ -49,8 +50,8 @@ struct Selection {
   std::string reason;   ///< one sentence: why this verdict
 };
 
-/// What the residual is judged against: the larger of the tolerance and the noise floor's
-/// multiple.
+/// What the residual is judged against: the noise floor's multiple and the tolerance, in
+/// quadrature.
 double AgreementLimit(const Selection& s, const SelectionRules& rules);
 
 /// The overall relative RMS of a residual vector of `cost` (sqrt(SSE / channels)).

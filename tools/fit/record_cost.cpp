@@ -19,6 +19,44 @@ double EarlySeconds(const ModelParams& p) {
   return 1.5 * fall + 5e-3;
 }
 
+// Where the measured rotor has fallen through 90 % of its way to where it settles (about its
+// first contact), plus a few milliseconds of that impact; the free-fall estimate without
+// displacement channels. A force that fades after power loss slows the fall, so the record
+// is the better judge.
+double EarlyEnd(const MeasurementParams& m, const MeasuredRecord& r, double trigger_s,
+                const ModelParams& declared) {
+  const std::size_t rows = r.time_s.size();
+  const std::size_t trigger_row = static_cast<std::size_t>(
+      std::lower_bound(r.time_s.begin(), r.time_s.end(), trigger_s) - r.time_s.begin());
+  const double settle_from = r.time_s.back() - std::min((r.time_s.back() - trigger_s) / 3.0, 0.1);
+  double first = std::numeric_limits<double>::infinity();
+  for (const MeasurementChannel& ch : m.channels) {
+    if (ch.quantity != MeasuredQuantity::kDisplacement || trigger_row >= rows) continue;
+    const std::vector<double>& v = r.values[r.Column(ch.column)];
+    double settled = 0.0;
+    int n = 0;
+    for (std::size_t j = trigger_row; j < rows; ++j) {
+      if (r.time_s[j] >= settle_from) {
+        settled += v[j];
+        ++n;
+      }
+    }
+    if (n == 0) continue;
+    settled /= n;
+    const double way = settled - v[trigger_row];
+    // Only channels that travel a clear distance (the vertical ones, mostly).
+    if (std::abs(way) < 0.25 * declared.tdbs.front().clearance_m) continue;
+    for (std::size_t j = trigger_row; j < rows; ++j) {
+      if ((v[j] - v[trigger_row]) / way >= 0.9) {
+        first = std::min(first, r.time_s[j]);
+        break;
+      }
+    }
+  }
+  if (!std::isfinite(first)) return trigger_s + EarlySeconds(declared);
+  return first + 5e-3;
+}
+
 bool Smooth(MeasuredQuantity q) {
   return q == MeasuredQuantity::kTdbSpeed || q == MeasuredQuantity::kRotorSpeed ||
          q == MeasuredQuantity::kCurrent;
@@ -35,7 +73,7 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
   const double t0 = record.time_s.front();
   const double t_end = record.time_s.back();
   compare_from_s_ = closed ? t0 : std::max(t0, trigger_s_ - run.lead_s);
-  early_end_s_ = std::min(t_end, trigger_s_ + EarlySeconds(declared));
+  early_end_s_ = std::min(t_end, EarlyEnd(measurement, record, trigger_s_, declared));
   settled_from_s_ = t_end - std::min((t_end - trigger_s_) / 3.0, 0.1);
   const double spin = declared.simulation.spin_speed_rad_s;
   const std::size_t rows = record.time_s.size();
@@ -118,16 +156,25 @@ double RecordCost::Apply(const Block& b, const std::vector<double>& values) cons
 }
 
 double RecordCost::NoiseFloor() const {
-  double sum = 0.0;
-  int n = 0;
+  // White noise of sigma_c on channel c would leave, in expectation, (sigma_c * weight)^2 per
+  // compared sample and (sigma_c * weight)^2 * sum(coefficient^2) per block.
+  std::vector<std::vector<double>> rows(column_.size());
+  for (const Sample& s : samples_)
+    rows[s.channel].push_back(record_.values[column_[s.channel]][s.row]);
+  std::vector<double> sigma(column_.size(), 0.0);
   for (std::size_t c = 0; c < column_.size(); ++c) {
-    if (range_[c] <= 0.0) continue;
-    const std::vector<double>& v = record_.values[column_[c]];
-    const double sigma = NoiseSigma(v, 0, v.size());
-    sum += (sigma / range_[c]) * (sigma / range_[c]);
-    ++n;
+    const std::vector<double>& all = record_.values[column_[c]];
+    sigma[c] = rows[c].size() >= 10 ? NoiseSigma(rows[c], 0, rows[c].size())
+                                    : NoiseSigma(all, 0, all.size());
   }
-  return n > 0 ? std::sqrt(sum / n) : 0.0;
+  double expected = 0.0;
+  for (const Sample& s : samples_) expected += std::pow(sigma[s.channel] * s.weight, 2);
+  for (const Block& b : blocks_) {
+    double sum_sq = 0.0;
+    for (const double k : b.coefficients) sum_sq += k * k;
+    expected += std::pow(sigma[b.channel] * b.weight, 2) * sum_sq;
+  }
+  return std::sqrt(expected / std::max(channels_, 1));
 }
 
 SimulatedRecord RecordCost::Simulate(const ModelParams& params) const {

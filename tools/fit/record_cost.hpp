@@ -40,7 +40,7 @@ class RecordCost {
   SimulatedRecord Simulate(const ModelParams& params) const;
 
   /// The overall relative RMS a perfect model would leave: each channel's measurement noise
-  /// (tools/fit/noise_floor.hpp, over the whole record) over its range, as in the cost.
+  /// (tools/fit/noise_floor.hpp, over its compared samples) through the cost's weights.
   double NoiseFloor() const;
 
   std::size_t size() const { return samples_.size() + blocks_.size(); }

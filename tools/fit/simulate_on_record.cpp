@@ -6,14 +6,16 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
+#include "controller_if/hil_session.hpp"
+#include "controller_if/pid_controller.hpp"
 #include "controller_if/power_state.hpp"
 #include "controller_if/sensor_emulator.hpp"
 #include "controller_if/state_dump.hpp"
 #include "rt_core/amb_force.hpp"
 #include "rt_core/model.hpp"
-#include "tools/fit/measured_record_maker.hpp"
 
 namespace ambdrop {
 namespace {
@@ -104,73 +106,16 @@ bool ClosedLoop(const ModelParams& params, const RecordRunOptions& options) {
          params.controller.kind == ControllerKind::kInternalPid;
 }
 
-namespace {
-
-SimulatedRecord SimulateClosedLoop(const ModelParams& declared, const MeasurementParams& m,
-                                   const MeasuredRecord& r, const RecordRunOptions& options,
-                                   double trigger_s) {
-  SimulatedRecord out;
-  out.trigger_time_s = trigger_s;
-  out.closed_loop = true;
-  ModelParams params = declared;
-  if (options.step_s > 0) params.simulation.step_s = options.step_s;
-  const double dt = params.simulation.step_s;
-  params.simulation.duration_s = r.time_s.back() + 2 * dt;
-  params.trigger.enabled = true;
-  params.trigger.time_s = trigger_s;
-  params.trigger.restore_time_s = -1.0;
-  for (SensorParams& s : params.sensors) {
-    s.noise.enabled = false;
-    s.quantisation_m = 0.0;
-  }
-  // Sampled on the step grid nearest the record's rate.
-  const double steps = std::max(1.0, std::round(r.SampleInterval() / dt));
-  MeasureOptions sampling;
-  sampling.rate_Hz = 1.0 / (steps * dt);
-  out.values.assign(m.channels.size(), std::vector<double>(r.time_s.size(), kNaN));
-  SyntheticMeasurement made;
-  try {
-    made = MakeMeasuredRecord(params, sampling);
-  } catch (const TruthRunDiverged& e) {
-    out.status = StepStatus::kNonFinite;
-    out.failure = e.what();
-    return out;
-  }
-  std::vector<int> column(m.channels.size(), -1);
-  for (std::size_t c = 0; c < m.channels.size(); ++c) {
-    const MeasurementChannel& want = m.channels[c];
-    for (std::size_t k = 0; k < made.measurement.channels.size(); ++k) {
-      const MeasurementChannel& have = made.measurement.channels[k];
-      if (have.quantity == want.quantity && have.index == want.index && have.axis == want.axis) {
-        column[c] = static_cast<int>(k);
-      }
-    }
-  }
-  const double period = steps * dt;
-  const std::size_t made_rows = made.record.time_s.size();
-  for (std::size_t j = 0; j < r.time_s.size(); ++j) {
-    const double k = std::round(r.time_s[j] / period);
-    if (k < 0 || k >= static_cast<double>(made_rows)) continue;
-    for (std::size_t c = 0; c < m.channels.size(); ++c) {
-      if (column[c] >= 0) {
-        out.values[c][j] = made.record.values[column[c]][static_cast<std::size_t>(k)];
-      }
-    }
-    if (out.rows == 0) out.first_row = j;
-    ++out.rows;
-  }
-  return out;
-}
-
-}  // namespace
-
 SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementParams& m,
                                  const MeasuredRecord& r, const RecordRunOptions& options) {
-  const double trigger_s = RecordTriggerTime(m, r);
-  if (ClosedLoop(declared, options)) return SimulateClosedLoop(declared, m, r, options, trigger_s);
   SimulatedRecord out;
-  out.trigger_time_s = trigger_s;
-  const double t_start = std::max(r.time_s.front(), out.trigger_time_s - options.lead_s);
+  out.trigger_time_s = RecordTriggerTime(m, r);
+  out.closed_loop = ClosedLoop(declared, options);
+  const bool closed = out.closed_loop;
+  // Closed loop, the rig runs from time 0 as `ambdrop sim` runs it; open loop, from just before
+  // the trigger.
+  const double t_start =
+      closed ? 0.0 : std::max(r.time_s.front(), out.trigger_time_s - options.lead_s);
   const double t_end = r.time_s.back();
   if (out.trigger_time_s >= t_end) {
     throw std::runtime_error(
@@ -182,11 +127,13 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
   if (options.step_s > 0) params.simulation.step_s = options.step_s;
   const double dt = params.simulation.step_s;
   params.simulation.duration_s = t_end - t_start + dt;
-  params.simulation.initial_position = InitialPosition::kCentred;
   params.trigger.enabled = true;
   params.trigger.time_s = out.trigger_time_s - t_start;
   params.trigger.restore_time_s = -1.0;
-  params.controller.kind = ControllerKind::kNone;
+  if (!closed) {
+    params.simulation.initial_position = InitialPosition::kCentred;
+    params.controller.kind = ControllerKind::kNone;
+  }
   for (AmbParams& a : params.ambs) a.current_profile.clear();
   // The prediction is the expected reading: noise and quantisation are not the model's to fit.
   for (SensorParams& s : params.sensors) {
@@ -198,7 +145,7 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
     if (ch.quantity == MeasuredQuantity::kRotorSpeed) rotor_speed_column = r.Column(ch.column);
   }
   const double configured_spin = params.simulation.spin_speed_rad_s;
-  if (rotor_speed_column >= 0) {
+  if (rotor_speed_column >= 0 && !closed) {
     params.simulation.spin_speed_rad_s = ValueAt(r, rotor_speed_column, t_start);
   }
   const Model model = BuildModel(params);
@@ -214,47 +161,65 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
   }
   const ControlInput static_load = StaticLoadInput(model);
   ControlInput input = static_load;
-  const auto measured_currents = [&](double t_record) {
+  const auto measured_currents = [&](double t_record, bool keep_unmeasured) {
     for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
       for (int axis = 0; axis < 2; ++axis) {
         const int c = current_column[a][axis];
-        input.amb[a].current_A[axis] =
-            c >= 0 ? ValueAt(r, c, t_record) : static_load.amb[a].current_A[axis];
+        if (c >= 0) {
+          input.amb[a].current_A[axis] = ValueAt(r, c, t_record);
+        } else if (!keep_unmeasured) {
+          input.amb[a].current_A[axis] = static_load.amb[a].current_A[axis];
+        }
       }
     }
   };
-  measured_currents(t_start);
 
-  // Initial state: modal coordinates that best explain the displacement channels.
   Simulator sim(model);
-  State state = sim.InitialState(input);
-  std::vector<Eigen::RowVectorXd> rows_q;
-  std::vector<double> pos, vel;
-  const double half_window = std::max(4.0 * r.SampleInterval(), 0.25e-3);
-  for (const MeasurementChannel& ch : m.channels) {
-    if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
-    const SensorParams& s = model.params.sensors[ch.index];
-    const auto [value, slope] = LocalLine(r, r.Column(ch.column), t_start, half_window);
-    rows_q.push_back(model.sensor_shapes[ch.index].row(ch.axis) * s.gain);
-    pos.push_back(value - s.offset_m);
-    vel.push_back(slope);
+  std::optional<ReferenceController> controller;
+  std::optional<SensorEmulator> controller_sensors;
+  std::int64_t substeps = 1;
+  State state;
+  if (closed) {
+    substeps = ControllerSubsteps(model);
+    const double period = static_cast<double>(substeps) * dt;
+    controller.emplace(model, period);
+    controller_sensors.emplace(model.params.sensors, period);
+    controller->Initial(&input);
+    state = sim.InitialState(static_load);
+  } else {
+    measured_currents(t_start, false);
+    state = sim.InitialState(input);
+    // The modal coordinates that best explain the displacement channels around the start.
+    std::vector<Eigen::RowVectorXd> rows_q;
+    std::vector<double> pos, vel;
+    const double half_window = std::max(4.0 * r.SampleInterval(), 0.25e-3);
+    for (const MeasurementChannel& ch : m.channels) {
+      if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
+      const SensorParams& s = model.params.sensors[ch.index];
+      const auto [value, slope] = LocalLine(r, r.Column(ch.column), t_start, half_window);
+      rows_q.push_back(model.sensor_shapes[ch.index].row(ch.axis) * s.gain);
+      pos.push_back(value - s.offset_m);
+      vel.push_back(slope);
+    }
+    if (!rows_q.empty()) {
+      Eigen::MatrixXd a(static_cast<Eigen::Index>(rows_q.size()), n);
+      for (std::size_t i = 0; i < rows_q.size(); ++i) {
+        a.row(static_cast<Eigen::Index>(i)) = rows_q[i];
+      }
+      const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> fit(a);
+      const Eigen::Map<const Eigen::VectorXd> p(pos.data(), static_cast<Eigen::Index>(pos.size()));
+      const Eigen::Map<const Eigen::VectorXd> v(vel.data(), static_cast<Eigen::Index>(vel.size()));
+      // Minimum norm: modes the sensors cannot see start at rest.
+      state.y.head(n) = fit.solve(p);
+      state.y.segment(n, n) = fit.solve(v);
+    }
+    state.y(model.spin_angle_index()) = configured_spin * t_start;
   }
-  if (!rows_q.empty()) {
-    Eigen::MatrixXd a(static_cast<Eigen::Index>(rows_q.size()), n);
-    for (std::size_t i = 0; i < rows_q.size(); ++i) a.row(static_cast<Eigen::Index>(i)) = rows_q[i];
-    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> fit(a);
-    const Eigen::Map<const Eigen::VectorXd> p(pos.data(), static_cast<Eigen::Index>(pos.size()));
-    const Eigen::Map<const Eigen::VectorXd> v(vel.data(), static_cast<Eigen::Index>(vel.size()));
-    // Minimum norm: modes the sensors cannot see start at rest.
-    state.y.head(n) = fit.solve(p);
-    state.y.segment(n, n) = fit.solve(v);
-  }
-  state.y(model.spin_angle_index()) = configured_spin * t_start;
 
   // Rows of the record to predict, and the step each falls on.
   const std::size_t total_rows = r.time_s.size();
   out.first_row = static_cast<std::size_t>(
-      std::lower_bound(r.time_s.begin(), r.time_s.end(), t_start) - r.time_s.begin());
+      std::lower_bound(r.time_s.begin(), r.time_s.end(), t_start - 0.5 * dt) - r.time_s.begin());
   out.values.assign(m.channels.size(), std::vector<double>(total_rows, kNaN));
   SensorEmulator sensors(model.params.sensors, r.SampleInterval());
   PowerState power(model);
@@ -290,19 +255,34 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
       out.values[c][j] = v;
     }
   };
+  SensorReadings controller_readings;
   while (row < total_rows) {
     const std::int64_t k = state.step_index;
     const double t_record = t_start + static_cast<double>(k) * dt;
-    // Rows on this step (the nearest step to their time) are predicted from this state.
+    // Power first, as `ambdrop sim` applies it: the controller's update of this step comes after.
+    if (k == model.trigger_step) {
+      // What flowed when power failed is what was measured then: a controller answers its
+      // sensors' noise, so the model's own command at that instant is off by that jitter.
+      measured_currents(t_record, true);
+      power.Apply(failure, k, input);
+    }
+    if (closed && k % substeps == 0) {
+      sim.Observe(state, &obs);
+      controller_sensors->Sample(obs, &controller_readings);
+      controller->Update(controller_readings, &input);
+    }
+    if (!closed && k < model.trigger_step) measured_currents(t_record, false);
+    power.Fill(k, &input);
+    // Rows on this step (the nearest step to their time) are predicted from this state, with
+    // the currents applied over this step.
     while (row < total_rows && r.time_s[row] < t_record + 0.5 * dt) {
-      record_row(row);
+      if (r.time_s[row] >= t_record - 0.5 * dt) {
+        record_row(row);
+        ++out.rows;
+      }
       ++row;
-      ++out.rows;
     }
     if (row >= total_rows) break;
-    if (k == model.trigger_step) power.Apply(failure, k, input);
-    if (k < model.trigger_step) measured_currents(t_record);
-    power.Fill(k, &input);
     const StepStatus status = sim.Step(&state, input);
     if (status != StepStatus::kOk) {
       out.status = status;

@@ -1,0 +1,37 @@
+#pragma once
+// `ambdrop fit` without its files: the declared model held against a record, every effect of
+// the library tried, the chosen ones fitted, and the residual before and after.
+#include <memory>
+#include <vector>
+
+#include "tools/fit/effect_selection.hpp"
+#include "tools/fit/fit_report.hpp"
+
+namespace ambdrop {
+
+struct FitRecordOptions {
+  RecordRunOptions run;
+  SelectionRules rules;
+};
+
+struct FitResult {
+  std::vector<Effect> library;
+  Selection selection;
+  std::vector<const Effect*> chosen;  ///< into library, in selection.chosen order
+  ModelParams fitted;                 ///< the declared params with the chosen effects
+  SimulatedRecord before;
+  SimulatedRecord after;
+  ResidualReport residual_before;
+  ResidualReport residual_after;
+};
+
+/// Throws (std::runtime_error and its kin) when the record cannot be used with the model.
+std::unique_ptr<FitResult> FitRecord(const ModelParams& declared,
+                                     const MeasurementParams& measurement,
+                                     const MeasuredRecord& record, const FitRecordOptions& options);
+
+/// The parameter of `effect` named `name` among the chosen ones; nullptr if not chosen.
+const ParameterEstimate* ChosenParameter(const FitResult& fit, const std::string& effect,
+                                         const std::string& name);
+
+}  // namespace ambdrop
