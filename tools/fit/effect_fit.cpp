@@ -131,6 +131,31 @@ EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& e
   }
   if (best_z.size() == 0) return fit;
 
+  // Quantised parameters: step to the neighbouring multiples while the cost falls, fitting
+  // the others afresh at each.
+  for (std::size_t i = 0; i < flat.size(); ++i) {
+    const EffectParameter& p = *flat[i].parameter;
+    if (p.quantum <= 0.0) continue;
+    for (const double direction : {1.0, -1.0}) {
+      for (int step = 0; step < 20; ++step) {
+        const double value =
+            ToValue(p, best_z(static_cast<Eigen::Index>(i))) + direction * p.quantum;
+        if (value < p.lower || value > p.upper) break;
+        Eigen::VectorXd z = best_z;
+        z(static_cast<Eigen::Index>(i)) = ToSearch(p, value);
+        Problem problem(cost, effects, flat, max_runs_per_start);
+        Eigen::LevenbergMarquardt<Problem> lm(problem);
+        lm.setXtol(1e-4);
+        lm.setFtol(1e-4);
+        lm.minimize(z);
+        fit.evaluations += problem.runs;
+        if (!(problem.best_sse < fit.sse)) break;
+        fit.sse = problem.best_sse;
+        best_z = problem.best_z;
+      }
+    }
+  }
+
   // The Jacobian at the optimum, in the parameters' own units, for their uncertainty.
   Problem at(cost, effects, flat, static_cast<int>(flat.size()) + 1);
   Eigen::MatrixXd jz(static_cast<Eigen::Index>(cost.size()),

@@ -180,15 +180,16 @@ Effect SensorGainOffset(const SensorParams& s, double clearance) {
   return e;
 }
 
-Effect SensorLag(const SensorParams& s) {
+Effect SensorLag(const SensorParams& s, double sample_s) {
   const std::string name = s.name;
   Effect e;
   e.name = "sensor_lag:" + name;
   e.family = "sensor_lag";
   e.description = fmt::format("transport delay and first-order low-pass of sensor {}", name);
   // The filter as its time constant: 0 is no filter, and the cost is smooth through it.
-  e.parameters = {{"delay_s", 0.0, 1e-3, {0.0, 2e-4}},
-                  {"filter_time_constant_s", 0.0, 1e-3, {0.0, 2e-4}}};
+  // The delay is whole samples of the controller (controller_if/sensor_emulator.cpp).
+  e.parameters = {{"delay_s", 0.0, 1e-3, {0.0, 2 * sample_s, 5 * sample_s}, false, sample_s},
+                  {"filter_time_constant_s", 0.0, 1e-3, {0.0, 2e-4, 0.0}}};
   e.revealed_by = {Q::kDisplacement};
   e.apply = [name](const std::vector<double>& v, ModelParams* p) {
     for (SensorParams& s : p->sensors) {
@@ -242,7 +243,7 @@ std::vector<Effect> EffectLibrary(const ModelParams& declared) {
   for (const SensorParams& s : declared.sensors) {
     if (!s.runout.enabled) effects.push_back(SensorRunout(s, clearance));
     effects.push_back(SensorGainOffset(s, clearance));
-    if (!s.lag.enabled) effects.push_back(SensorLag(s));
+    if (!s.lag.enabled) effects.push_back(SensorLag(s, 1.0 / declared.controller.rate_Hz));
   }
   for (const TdbParams& t : declared.tdbs) {
     if (t.spin.enabled) effects.push_back(TdbDrag(t));

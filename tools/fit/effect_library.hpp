@@ -18,6 +18,9 @@ struct EffectParameter {
   double upper = 0.0;
   std::vector<double> starts;  ///< start values for the multi-start search
   bool periodic = false;       ///< an angle: any value, taken modulo 2 pi
+  /// > 0: the model only takes multiples of this (a delay in whole samples), so the cost is
+  /// flat between them and the fit steps through them instead of following a gradient.
+  double quantum = 0.0;
 };
 
 struct Effect {

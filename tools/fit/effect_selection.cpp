@@ -40,6 +40,10 @@ double AgreementLimit(const Selection& s, const SelectionRules& rules) {
   return std::hypot(rules.explained_over_floor * s.noise_floor, rules.tolerance);
 }
 
+double AboveNoise(double rms, double noise_floor) {
+  return std::sqrt(std::max(0.0, rms * rms - noise_floor * noise_floor));
+}
+
 double OverallRms(const RecordCost& cost, double sse) {
   return std::sqrt(sse / std::max(cost.channels(), 1));
 }

@@ -54,6 +54,10 @@ struct Selection {
 /// quadrature.
 double AgreementLimit(const Selection& s, const SelectionRules& rules);
 
+/// The part of an overall relative RMS that is model error: noise adds in quadrature, and no
+/// model predicts it. sqrt(max(0, rms^2 - floor^2)).
+double AboveNoise(double rms, double noise_floor);
+
 /// The overall relative RMS of a residual vector of `cost` (sqrt(SSE / channels)).
 double OverallRms(const RecordCost& cost, double sse);
 

@@ -26,9 +26,10 @@ const char* QuantityName(MeasuredQuantity q) {
   return "?";
 }
 
-void Residuals(JsonWriter& json, const ResidualReport& r) {
+void Residuals(JsonWriter& json, const ResidualReport& r, double noise_floor) {
   json.BeginObject();
   json.Key("overall").Number(r.overall);
+  json.Key("overall_above_noise").Number(AboveNoise(r.overall, noise_floor));
   json.Key("channels").BeginObject();
   for (const ChannelResidual& c : r.channels) {
     json.Key(c.column).BeginObject();
@@ -76,9 +77,9 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   json.Key("end_s").Number(o.before.windows.end_s);
   json.EndObject();
   json.Key("rms_before");
-  Residuals(json, o.before);
+  Residuals(json, o.before, s.noise_floor);
   json.Key("rms_after");
-  Residuals(json, o.after);
+  Residuals(json, o.after, s.noise_floor);
 
   json.Key("chosen").BeginArray();
   for (std::size_t e = 0; e < o.chosen.size(); ++e) {
@@ -142,9 +143,10 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
   md += fmt::format("# Fit of {} to {}\n\n", o.config_path, o.measured_path);
   md += fmt::format("**Verdict: {}.** {}.\n\n", s.verdict, s.reason);
   md += fmt::format(
-      "Overall relative RMS residual: {:.4g} before, {:.4g} after (noise floor "
-      "{:.3g}).\n\n",
-      s.rms_before, s.rms_after, s.noise_floor);
+      "Overall relative RMS residual: {:.4g} before, {:.4g} after; the record's noise alone "
+      "would leave {:.3g}, so the model error is {:.3g} before and {:.3g} after.\n\n",
+      s.rms_before, s.rms_after, s.noise_floor, AboveNoise(s.rms_before, s.noise_floor),
+      AboveNoise(s.rms_after, s.noise_floor));
   if (!o.chosen.empty()) {
     md += "## Chosen effects\n\n";
     for (std::size_t e = 0; e < o.chosen.size(); ++e) {
