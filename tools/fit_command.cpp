@@ -12,9 +12,7 @@
 #include "io/json_writer.hpp"
 #include "io/measured_csv.hpp"
 #include "tools/exit_codes.hpp"
-#include "tools/fit/effect_selection.hpp"
-#include "tools/fit/fit_report.hpp"
-#include "tools/fit/residuals.hpp"
+#include "tools/fit/fit_record.hpp"
 
 namespace ambdrop {
 namespace {
@@ -63,53 +61,38 @@ int RunFitCommand(const FitOptions& options) {
   }
   const MeasurementParams& m = *config.measurement;
 
-  RecordRunOptions run;
-  run.lead_s = options.lead_s;
-  std::optional<RecordCost> cost;
-  SimulatedRecord before_sim;
+  FitRecordOptions fit_options;
+  fit_options.run.lead_s = options.lead_s;
+  fit_options.rules.threads = options.threads;
+  fit_options.rules.max_runs_per_start = options.max_runs_per_start;
+  fit_options.rules.tolerance = options.tolerance;
+  std::unique_ptr<FitResult> fit;
   try {
-    cost.emplace(config.params, m, record, run);
-    before_sim = cost->Simulate(config.params);
+    fit = FitRecord(config.params, m, record, fit_options);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitConfig;
   }
-  if (before_sim.status != StepStatus::kOk && !options.quiet) {
+  const Selection& selection = fit->selection;
+  if (fit->before.status != StepStatus::kOk && !options.quiet) {
     fmt::print(stderr, "warning: the declared model stopped early on the record: {}\n",
-               before_sim.failure);
+               fit->before.failure);
   }
-
-  const std::vector<Effect> library = EffectLibrary(config.params);
-  SelectionRules rules;
-  rules.threads = options.threads;
-  rules.max_runs_per_start = options.max_runs_per_start;
-  rules.tolerance = options.tolerance;
-  const Selection selection = SelectEffects(*cost, library, cost->NoiseFloor(), rules);
-
-  std::vector<const Effect*> chosen;
-  for (const std::string& name : selection.chosen) {
-    for (const Effect& e : library) {
-      if (e.name == name) chosen.push_back(&e);
-    }
-  }
-  const ModelParams after_params = WithEffects(config.params, chosen, selection.chosen_fit.values);
-  const SimulatedRecord after_sim = cost->Simulate(after_params);
-
   FitOutcome outcome;
   outcome.config_path = options.config_path;
   outcome.measured_path = options.measured_path;
-  outcome.before = ComputeResiduals(config.params, m, record, before_sim, run.lead_s);
-  outcome.after = ComputeResiduals(config.params, m, record, after_sim, run.lead_s);
+  outcome.before = fit->residual_before;
+  outcome.after = fit->residual_after;
   outcome.selection = &selection;
-  outcome.library = &library;
-  outcome.chosen = chosen;
+  outcome.library = &fit->library;
+  outcome.chosen = fit->chosen;
   outcome.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   try {
     const fs::path out(options.out_dir);
     fs::create_directories(out);
     WriteTextFile(out / "fit.json", FitJson(outcome, config.params, m));
-    WriteFitReport(out, outcome, config.params, m, record, before_sim, after_sim);
+    WriteFitReport(out, outcome, config.params, m, record, fit->before, fit->after);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitError;

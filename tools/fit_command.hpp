@@ -12,7 +12,7 @@ struct FitOptions {
   double lead_s = 2e-3;  ///< simulated time before the trigger
   int threads = 2;
   int max_runs_per_start = 40;
-  double tolerance = 0.02;  ///< relative RMS within which model and record agree
+  double tolerance = 2e-3;  ///< relative RMS within which model and record agree
   bool quiet = false;
 };
 

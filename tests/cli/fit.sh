@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# `ambdrop fit` from the command line: a record made by `ambdrop measure` from the PID rig with
+# its DE TDB offset, fitted with the rig as declared (with the [measurement] table `measure`
+# wrote): fit.json names the misalignment with its values and uncertainties, the residual
+# falls, report.md and its plots are written; bad inputs are refused with a clear error.
+# Usage: fit.sh AMBDROP_BINARY SOURCE_DIR
+set -euo pipefail
+tool=$1
+source_dir=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() {
+  echo "FAIL: $*" >&2
+  exit 1
+}
+cd "$work"
+rig="$source_dir/configs/jarroux2019_industrial_pid.toml"
+timing=(--set simulation.duration_s=0.25 --set trigger.time_s=0.1)
+
+"$tool" measure "$rig" "${timing[@]}" --set simulation.step_s=2.5e-6 \
+  --set tdb.de.misalignment.enabled=true --set tdb.de.misalignment.x_m=2e-5 \
+  --set tdb.de.misalignment.y_m=-4e-5 --current-noise-A 0.005 --out drop.csv \
+  --measurement-toml measurement.toml -q
+{
+  echo "base = \"$rig\""
+  cat measurement.toml
+} >declared.toml
+"$tool" fit declared.toml "${timing[@]}" --measured drop.csv --out fit >fit.txt ||
+  fail "fit exited $?: $(cat fit.txt)"
+python3 - fit/fit.json <<'PY'
+import json, sys
+f = json.load(open(sys.argv[1]))
+assert f["verdict"] == "explained", f["verdict"]
+chosen = f["chosen"]
+assert [c["effect"] for c in chosen] == ["tdb_misalignment:de"], chosen
+p = chosen[0]["parameters"]
+assert abs(p["x_m"]["value"] - 2e-5) < 4e-6 and abs(p["y_m"]["value"] + 4e-5) < 8e-6, p
+assert p["y_m"]["sigma"] > 0, p
+assert "[tdb.de.misalignment]" in chosen[0]["config"], chosen[0]["config"]
+before, after = f["rms_before"], f["rms_after"]
+assert before["overall"] > 3 * after["overall"], (before["overall"], after["overall"])
+assert set(before["channels"]) == set(after["channels"]) and "y_de" in before["channels"]
+assert len(f["candidates"]) >= 10 and all("effect" in c for c in f["candidates"])
+print(f"fit: {f['verdict']}, x {p['x_m']['value']:.3g} m, y {p['y_m']['value']:.3g} m, "
+      f"overall {before['overall']:.3g} -> {after['overall']:.3g}")
+PY
+grep -q "Verdict: explained" fit/report.md || fail "report.md has no verdict"
+for plot in channel_y_de.svg residual_y_de.svg orbit_de.svg; do
+  grep -q "<svg" "fit/$plot" || fail "no plot $plot"
+  grep -q "$plot" fit/report.md || fail "report.md does not show $plot"
+done
+
+# Refusals, each saying what is wrong.
+rc=0
+"$tool" fit "$rig" --measured drop.csv --out x 2>err.txt || rc=$?
+[[ $rc -eq 2 ]] && grep -q "no \[measurement\] table" err.txt || fail "no [measurement]: $rc $(cat err.txt)"
+python3 - <<'PY'
+import csv
+rows = list(csv.reader(open("drop.csv")))
+keep = [i for i, name in enumerate(rows[0]) if name != "y_nde"]
+with open("short.csv", "w", newline="") as f:
+    csv.writer(f).writerows([[r[i] for i in keep] for r in rows])
+with open("slow.csv", "w", newline="") as f:
+    csv.writer(f).writerows([rows[0]] + rows[1::2])
+PY
+rc=0
+"$tool" fit declared.toml --measured short.csv --out x 2>err.txt || rc=$?
+[[ $rc -eq 2 ]] && grep -q "'y_nde'" err.txt || fail "missing column: $rc $(cat err.txt)"
+rc=0
+"$tool" fit declared.toml --measured slow.csv --out x 2>err.txt || rc=$?
+[[ $rc -eq 2 ]] && grep -q "sample_rate_Hz" err.txt || fail "wrong rate: $rc $(cat err.txt)"
+echo "fit: ok"
