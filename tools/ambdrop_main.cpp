@@ -274,9 +274,16 @@ int main(int argc, char** argv) {
       "and the error before and after");
   fit_command->add_option("CONFIG", fit.config_path, "The declared model, with [measurement]")
       ->required();
-  fit_command->add_option("--measured", fit.measured_path, "The measured record (CSV)")
-      ->type_name("FILE")
-      ->required();
+  CLI::Option* measured_option =
+      fit_command->add_option("--measured", fit.measured_path, "The measured record (CSV)")
+          ->type_name("FILE");
+  CLI::Option* spin_up_option =
+      fit_command
+          ->add_option("--spin-up-times", fit.spin_up_times,
+                       "Instead of a record: measured TDB spin-up times after the trigger, "
+                       "e.g. de=0.11,nde=0.129; which single parameter change explains them")
+          ->type_name("TDB=S,...");
+  measured_option->excludes(spin_up_option);
   fit_command->add_option("--out", fit.out_dir, "Output directory (fit.json, report.md, plots)")
       ->type_name("DIR")
       ->capture_default_str();

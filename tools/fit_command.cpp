@@ -2,17 +2,22 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <exception>
 #include <filesystem>
+#include <map>
 #include <optional>
+#include <sstream>
 
 #include "io/config_loader.hpp"
 #include "io/json_writer.hpp"
 #include "io/measured_csv.hpp"
 #include "tools/exit_codes.hpp"
 #include "tools/fit/fit_record.hpp"
+#include "tools/fit/spinup_fit.hpp"
 
 namespace ambdrop {
 namespace {
@@ -42,7 +47,81 @@ void CheckRecord(const MeasurementParams& m, const MeasuredRecord& r, const std:
 
 }  // namespace
 
+int RunSpinUpFit(const FitOptions& options) {
+  LoadedConfig config;
+  std::map<std::string, double> measured;
+  try {
+    config = LoadConfig(options.config_path, options.overrides);
+    std::stringstream list(options.spin_up_times);
+    std::string item;
+    while (std::getline(list, item, ',')) {
+      const std::size_t eq = item.find('=');
+      const std::string name = item.substr(0, eq);
+      const bool known = std::any_of(config.params.tdbs.begin(), config.params.tdbs.end(),
+                                     [&](const TdbParams& t) { return t.name == name; });
+      double value = 0.0;
+      if (eq == std::string::npos || !known ||
+          std::from_chars(item.data() + eq + 1, item.data() + item.size(), value).ec !=
+              std::errc{} ||
+          !(value > 0.0)) {
+        throw ConfigError(fmt::format(
+            "--spin-up-times: '{}': expected TDB=SECONDS with a TDB of {} and a positive time",
+            item, options.config_path));
+      }
+      measured[name] = value;
+    }
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitConfig;
+  }
+  const std::vector<SpinUpCandidate> candidates = ExplainSpinUpTimes(config.params, measured);
+  JsonWriter json;
+  json.BeginObject();
+  json.Key("measured_s").BeginObject(true);
+  for (const auto& [name, t] : measured) json.Key(name).Number(t);
+  json.EndObject();
+  json.Key("candidates").BeginArray();
+  for (const SpinUpCandidate& c : candidates) {
+    json.BeginObject();
+    json.Key("change").String(c.name);
+    json.Key("parameter").String(c.parameter);
+    json.Key("declared").Number(c.declared);
+    json.Key("fitted").Number(c.fitted);
+    json.Key("times_s").BeginObject(true);
+    for (const auto& [name, t] : c.times_s) json.Key(name).Number(t);
+    json.EndObject();
+    json.Key("rms_relative_error_before").Number(c.rms_before);
+    json.Key("rms_relative_error_after").Number(c.rms_after);
+    json.EndObject();
+  }
+  json.EndArray();
+  json.EndObject();
+  try {
+    fs::create_directories(options.out_dir);
+    WriteTextFile(fs::path(options.out_dir) / "spinup_fit.json", json.str());
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitError;
+  }
+  if (!options.quiet) {
+    fmt::print("{:<30} {:>10} {:>10}", "single change", "declared", "fitted");
+    for (const auto& [name, t] : measured) fmt::print(" {:>8}", name + " (s)");
+    fmt::print("  RMS relative error\n");
+    for (const SpinUpCandidate& c : candidates) {
+      fmt::print("{:<30} {:>10.4g} {:>10.4g}", c.name, c.declared, c.fitted);
+      for (const auto& [name, t] : measured) fmt::print(" {:>8.4f}", c.times_s.at(name));
+      fmt::print("  {:.1f} % -> {:.2f} %\n", 100 * c.rms_before, 100 * c.rms_after);
+    }
+  }
+  return kExitOk;
+}
+
 int RunFitCommand(const FitOptions& options) {
+  if (!options.spin_up_times.empty()) return RunSpinUpFit(options);
+  if (options.measured_path.empty()) {
+    fmt::print(stderr, "error: give the record (--measured FILE) or --spin-up-times\n");
+    return kExitUsage;
+  }
   const auto start = std::chrono::steady_clock::now();
   LoadedConfig config;
   MeasuredRecord record;

@@ -14,11 +14,15 @@ struct FitOptions {
   int max_runs_per_start = 40;
   double tolerance = 2e-3;  ///< relative RMS within which model and record agree
   bool quiet = false;
+  /// Instead of a record: measured TDB spin-up times ("de=0.11,nde=0.129", s after the
+  /// trigger); which single parameter change explains them (tools/fit/spinup_fit.hpp).
+  std::string spin_up_times;
 };
 
 /// `ambdrop fit CONFIG --measured FILE --out DIR`: holds the declared model against a measured
 /// record (tools/fit/): residual per channel and phase, the library's effects fitted and
-/// chosen by error cut and BIC, and a verdict. Writes DIR/fit.json and DIR/report.md.
+/// chosen by error cut and BIC, and a verdict. Writes DIR/fit.json and DIR/report.md. With
+/// spin_up_times: a table of single-parameter candidates, and DIR/spinup_fit.json.
 int RunFitCommand(const FitOptions& options);
 
 }  // namespace ambdrop
