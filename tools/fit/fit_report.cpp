@@ -43,7 +43,26 @@ void Residuals(JsonWriter& json, const ResidualReport& r, double noise_floor) {
     json.EndObject();
   }
   json.EndObject();
+  json.Key("features").BeginArray();
+  for (const FeatureComparison& f : r.features) {
+    json.BeginObject(true);
+    json.Key("feature").String(f.feature);
+    json.Key("channel").String(f.channel);
+    json.Key("measured").Number(f.measured);
+    json.Key("model").Number(f.model);
+    json.EndObject();
+  }
+  json.EndArray();
   json.EndObject();
+}
+
+bool Suggested(const ResidualReport& before, const std::string& family) {
+  for (const Signature& s : before.signatures) {
+    for (const std::string& f : s.points_to) {
+      if (family.find(f) != std::string::npos) return true;
+    }
+  }
+  return false;
 }
 
 void Parameters(JsonWriter& json, const EffectFit& fit, const std::string& effect) {
@@ -81,6 +100,20 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   json.Key("rms_after");
   Residuals(json, o.after, s.noise_floor);
 
+  json.Key("signatures").BeginArray();
+  for (const Signature& sig : o.before.signatures) {
+    json.BeginObject(true);
+    json.Key("kind").String(sig.kind);
+    json.Key("channel").String(sig.channel);
+    json.Key("value").Number(sig.value);
+    json.Key("relative").Number(sig.relative);
+    json.Key("points_to").BeginArray(true);
+    for (const std::string& f : sig.points_to) json.String(f);
+    json.EndArray();
+    json.EndObject();
+  }
+  json.EndArray();
+
   json.Key("chosen").BeginArray();
   for (std::size_t e = 0; e < o.chosen.size(); ++e) {
     json.BeginObject();
@@ -99,6 +132,7 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     json.Key("effect").String(c.name);
     json.Key("family").String(c.family);
     json.Key("decidable").Bool(c.decidable);
+    json.Key("suggested_by_signatures").Bool(Suggested(o.before, c.family));
     if (c.decidable) {
       json.Key("rms_after").Number(c.rms_after);
       json.Key("delta_bic").Number(c.delta_bic);
@@ -167,7 +201,26 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
     }
     md += "\n";
   }
-  md += "## Residual per channel (RMS, SI units)\n\n";
+  if (!o.before.signatures.empty()) {
+    md += "## What stands out in the residual (declared model)\n\n";
+    md += "| signature | channel | value (SI) | of the channel's range | points to |\n";
+    md += "|---|---|---|---|---|\n";
+    for (const Signature& sig : o.before.signatures) {
+      std::string to;
+      for (const std::string& f : sig.points_to) to += (to.empty() ? "" : ", ") + f;
+      md += fmt::format("| {} | {} | {:.4g} | {:.1f} % | {} |\n", sig.kind, sig.channel, sig.value,
+                        100 * sig.relative, to);
+    }
+    md += "\n";
+  }
+  md += "## Drop features: record, model before, model after\n\n";
+  md += "| feature | channel | record | before | after |\n|---|---|---|---|---|\n";
+  for (std::size_t i = 0; i < o.before.features.size() && i < o.after.features.size(); ++i) {
+    const FeatureComparison& b = o.before.features[i];
+    md += fmt::format("| {} | {} | {:.5g} | {:.5g} | {:.5g} |\n", b.feature, b.channel, b.measured,
+                      b.model, o.after.features[i].model);
+  }
+  md += "\n## Residual per channel (RMS, SI units)\n\n";
   md += "| channel | quantity | before | after | before trigger | impact | settled |\n";
   md += "|---|---|---|---|---|---|---|\n";
   for (std::size_t c = 0; c < o.before.channels.size(); ++c) {
@@ -180,13 +233,15 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
         a.rms_impact, b.rms_settled, a.rms_settled);
   }
   md +=
-      "\n## Candidates\n\n| effect | relative RMS with it | ΔBIC | accepted |\n|---|---|---|---|\n";
+      "\n## Candidates\n\n| effect | suggested by the signatures | relative RMS with it | ΔBIC | "
+      "accepted |\n|---|---|---|---|---|\n";
   for (const CandidateScore& c : s.candidates) {
     if (!c.decidable) {
-      md += fmt::format("| {} | not decidable from these channels | | |\n", c.name);
+      md += fmt::format("| {} | | not decidable from these channels | | |\n", c.name);
       continue;
     }
-    md += fmt::format("| {} | {:.4g} | {:.1f} | {} |\n", c.name, c.rms_after, c.delta_bic,
+    md += fmt::format("| {} | {} | {:.4g} | {:.1f} | {} |\n", c.name,
+                      Suggested(o.before, c.family) ? "yes" : "", c.rms_after, c.delta_bic,
                       c.accepted ? "yes" : "");
   }
   md += "\n## Plots\n\n";

@@ -82,6 +82,8 @@ ResidualReport ComputeResiduals(const ModelParams& params, const MeasurementPara
     report.channels.push_back(cr);
   }
   report.overall = kNaN;
+  report.features = CompareFeatures(params, m, r, sim);
+  report.signatures = ResidualSignatures(params, m, r, sim);
   return report;
 }
 

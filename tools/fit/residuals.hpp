@@ -7,6 +7,7 @@
 
 #include "io/config_measurement.hpp"
 #include "io/measured_csv.hpp"
+#include "tools/fit/drop_features.hpp"
 #include "tools/fit/simulate_on_record.hpp"
 
 namespace ambdrop {
@@ -37,6 +38,8 @@ struct ResidualReport {
   FitWindows windows;
   std::vector<ChannelResidual> channels;  ///< in measurement order
   double overall = 0.0;  ///< the fit's overall relative RMS (RecordCost), set by the caller
+  std::vector<FeatureComparison> features;  ///< the drop's features, record against model
+  std::vector<Signature> signatures;        ///< what stands out in the residual
 };
 
 /// `start_s`: where the comparison starts (RecordCost::compare_from_s).
