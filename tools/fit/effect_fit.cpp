@@ -110,6 +110,19 @@ EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& e
   for (const Effect* e : effects) fit.effects.push_back(e->name);
   fit.sse = std::numeric_limits<double>::infinity();
   Eigen::VectorXd best_z;
+  // One Levenberg-Marquardt search from z; keeps its best point if it beats the best so far.
+  const auto search_from = [&](Eigen::VectorXd z) {
+    Problem problem(cost, effects, flat, max_runs_per_start);
+    Eigen::LevenbergMarquardt<Problem> lm(problem);
+    lm.setXtol(1e-4);
+    lm.setFtol(1e-4);
+    lm.minimize(z);
+    fit.evaluations += problem.runs;
+    if (!(problem.best_sse < fit.sse)) return false;
+    fit.sse = problem.best_sse;
+    best_z = problem.best_z;
+    return true;
+  };
   for (std::size_t s = 0; s < starts; ++s) {
     // Start s takes each parameter's start s (cycling through shorter lists).
     Eigen::VectorXd z(static_cast<Eigen::Index>(flat.size()));
@@ -118,16 +131,7 @@ EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& e
       const double v = p.starts.empty() ? 0.5 * (p.lower + p.upper) : p.starts[s % p.starts.size()];
       z(static_cast<Eigen::Index>(i)) = ToSearch(p, v);
     }
-    Problem problem(cost, effects, flat, max_runs_per_start);
-    Eigen::LevenbergMarquardt<Problem> lm(problem);
-    lm.setXtol(1e-4);
-    lm.setFtol(1e-4);
-    lm.minimize(z);
-    fit.evaluations += problem.runs;
-    if (problem.best_sse < fit.sse) {
-      fit.sse = problem.best_sse;
-      best_z = problem.best_z;
-    }
+    search_from(z);
   }
   if (best_z.size() == 0) return fit;
 
@@ -143,15 +147,7 @@ EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& e
         if (value < p.lower || value > p.upper) break;
         Eigen::VectorXd z = best_z;
         z(static_cast<Eigen::Index>(i)) = ToSearch(p, value);
-        Problem problem(cost, effects, flat, max_runs_per_start);
-        Eigen::LevenbergMarquardt<Problem> lm(problem);
-        lm.setXtol(1e-4);
-        lm.setFtol(1e-4);
-        lm.minimize(z);
-        fit.evaluations += problem.runs;
-        if (!(problem.best_sse < fit.sse)) break;
-        fit.sse = problem.best_sse;
-        best_z = problem.best_z;
+        if (!search_from(z)) break;
       }
     }
   }

@@ -8,6 +8,7 @@
 #include "controller_if/offline_run.hpp"
 #include "io/config_loader.hpp"
 #include "rt_core/model.hpp"
+#include "tools/fit/spinup_fit.hpp"
 #include "tools/validation/first_impact.hpp"
 #include "tools/validation/validation_cases.hpp"
 
@@ -18,24 +19,10 @@ std::vector<ValidationCheck> Seed000SpinUpTable3(const std::string& configs_dir)
   const ModelParams p =
       LoadConfig(configs_dir + "/jarroux2019_industrial.toml", {"simulation.duration_s=0.45"})
           .params;
-  const Model model = BuildModel(p);
   // Spin-up time: from the trigger until the TDB surface speed first reaches 95 % of the
   // journal surface speed (as the paper reads its measured race speeds).
-  std::map<std::string, double> spinup;
-  const OfflineRunResult r = RunOffline(model, [&](const Observation& o) {
-    if (o.time_s < p.trigger.time_s) return;
-    for (std::size_t i = 0; i < p.tdbs.size(); ++i) {
-      const TdbParams& t = p.tdbs[i];
-      const double race_surface = o.tdb[i].tdb_spin_rad_s * (t.journal_radius_m + t.clearance_m);
-      const double journal_surface = o.spin_speed_rad_s * t.journal_radius_m;
-      if (!spinup.count(t.name) && race_surface >= 0.95 * journal_surface) {
-        spinup[t.name] = o.time_s - p.trigger.time_s;
-      }
-    }
-  });
-  const auto time_of = [&](const char* name) {
-    return r.status == StepStatus::kOk && spinup.count(name) ? spinup[name] : -1.0;
-  };
+  const std::map<std::string, double> spinup = TdbSpinUpTimes(p);
+  const auto time_of = [&](const char* name) { return spinup.at(name); };
   const double de = time_of("de");
   const double nde = time_of("nde");
   return {
