@@ -275,7 +275,9 @@ int main(int argc, char** argv) {
   fit_command->add_option("CONFIG", fit.config_path, "The declared model, with [measurement]")
       ->required();
   CLI::Option* measured_option =
-      fit_command->add_option("--measured", fit.measured_path, "The measured record (CSV)")
+      fit_command
+          ->add_option("--measured", fit.measured_path,
+                       "The measured record: CSV, or an ambdrop run record (.lcm)")
           ->type_name("FILE");
   CLI::Option* spin_up_option =
       fit_command

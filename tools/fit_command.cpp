@@ -3,21 +3,26 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <chrono>
 #include <cmath>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <optional>
 #include <sstream>
 
 #include "io/config_loader.hpp"
+#include "io/event_log.hpp"
 #include "io/json_writer.hpp"
 #include "io/measured_csv.hpp"
 #include "tools/exit_codes.hpp"
 #include "tools/fit/fit_record.hpp"
+#include "tools/fit/run_record_measurement.hpp"
 #include "tools/fit/spinup_fit.hpp"
+#include "tools/record/run_record_reader.hpp"
 
 namespace ambdrop {
 namespace {
@@ -43,6 +48,52 @@ void CheckRecord(const MeasurementParams& m, const MeasuredRecord& r, const std:
         fmt::format("{}: sampled at {:.6g} Hz, but {}'s measurement.sample_rate_Hz is {:.6g} Hz",
                     r.source, rate, config, m.sample_rate_Hz));
   }
+}
+
+// An LCM event log (an ambdrop run record) starts with the log's sync word, big-endian; a CSV
+// record starts with text.
+bool IsEventLog(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::array<unsigned char, 4> head{};
+  if (!in.read(reinterpret_cast<char*>(head.data()), head.size())) return false;
+  const std::uint32_t word = (std::uint32_t{head[0]} << 24) | (std::uint32_t{head[1]} << 16) |
+                             (std::uint32_t{head[2]} << 8) | std::uint32_t{head[3]};
+  return word == kEventLogSync;
+}
+
+// The index of the sensor, AMB or TDB named `name` in `list`; a ConfigError if it has none.
+template <typename Params>
+int IndexByName(const std::vector<Params>& list, const std::string& name, const char* what,
+                const std::string& config) {
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    if (list[i].name == name) return static_cast<int>(i);
+  }
+  throw ConfigError(
+      fmt::format("the record has a {} '{}' that {} does not declare", what, name, config));
+}
+
+// A run record's own measurement is in its recorded rig's order: the declared config's order
+// may differ, so its channels are found again by name.
+MeasurementParams InDeclaredOrder(MeasurementParams m, const ModelParams& recorded,
+                                  const ModelParams& declared, const std::string& config) {
+  for (MeasurementChannel& c : m.channels) {
+    switch (c.quantity) {
+      case MeasuredQuantity::kDisplacement:
+        c.index =
+            IndexByName(declared.sensors, recorded.sensors.at(c.index).name, "sensor", config);
+        break;
+      case MeasuredQuantity::kCurrent:
+        c.index = IndexByName(declared.ambs, recorded.ambs.at(c.index).name, "AMB", config);
+        break;
+      case MeasuredQuantity::kTdbNormalForce:
+      case MeasuredQuantity::kTdbSpeed:
+        c.index = IndexByName(declared.tdbs, recorded.tdbs.at(c.index).name, "TDB", config);
+        break;
+      case MeasuredQuantity::kRotorSpeed:
+        break;
+    }
+  }
+  return m;
 }
 
 }  // namespace
@@ -125,20 +176,61 @@ int RunFitCommand(const FitOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   LoadedConfig config;
   MeasuredRecord record;
+  std::optional<MeasurementParams> from_record;  // an ambdrop run record's own measurement
   try {
     config = LoadConfig(options.config_path, options.overrides);
-    if (!config.measurement) {
-      throw ConfigError(options.config_path +
-                        ": no [measurement] table: say which record column is which quantity "
-                        "(see io/config_measurement.hpp)");
+    if (IsEventLog(options.measured_path)) {
+      RunRecordFile file;
+      try {
+        file = ReadRunRecord(options.measured_path);
+      } catch (const std::exception& e) {
+        throw MeasuredRecordError(e.what());
+      }
+      for (const std::string& w : file.warnings) fmt::print(stderr, "warning: {}\n", w);
+      // The recorded rig names the columns and gives the flux decay the currents followed; if
+      // its config no longer loads, the declared one stands in.
+      std::optional<LoadedConfig> recorded;
+      try {
+        recorded = LoadConfigFromString(file.header.config_toml,
+                                        options.measured_path + " (recorded config)");
+      } catch (const std::exception& e) {
+        fmt::print(stderr, "warning: {}; the record is read with {}'s rig\n", e.what(),
+                   options.config_path);
+      }
+      const ModelParams& rig = recorded ? recorded->params : config.params;
+      RecordAsMeasurement converted;
+      try {
+        converted = MeasurementFromRunRecord(file, rig);
+      } catch (const std::invalid_argument& e) {
+        throw MeasuredRecordError(options.measured_path + ": " + e.what());
+      }
+      record = std::move(converted.record);
+      record.source = options.measured_path;
+      const double interval = 1.0 / converted.measurement.sample_rate_Hz;
+      if (std::abs(record.SampleInterval() / interval - 1.0) > 0.01) {
+        throw MeasuredRecordError(fmt::format(
+            "{}: sensor samples are missing: {} samples over {:.6g} s, at a period of {:.6g} s",
+            options.measured_path, record.time_s.size(),
+            record.time_s.back() - record.time_s.front(), interval));
+      }
+      if (!config.measurement) {
+        from_record =
+            InDeclaredOrder(converted.measurement, rig, config.params, options.config_path);
+      }
+    } else {
+      if (!config.measurement) {
+        throw ConfigError(options.config_path +
+                          ": no [measurement] table: say which record column is which quantity "
+                          "(see io/config_measurement.hpp)");
+      }
+      record = ReadMeasuredCsv(options.measured_path);
     }
-    record = ReadMeasuredCsv(options.measured_path);
-    CheckRecord(*config.measurement, record, options.config_path);
+    CheckRecord(from_record ? *from_record : *config.measurement, record, options.config_path);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitConfig;
   }
-  const MeasurementParams& m = *config.measurement;
+  const MeasurementParams& m = from_record ? *from_record : *config.measurement;
 
   FitRecordOptions fit_options;
   fit_options.run.lead_s = options.lead_s;

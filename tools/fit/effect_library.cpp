@@ -225,6 +225,78 @@ Effect TdbDrag(const TdbParams& t) {
   return e;
 }
 
+// A Kelvin-Voigt ribbon that is really a dry-friction one: the generalized Dahl law in its
+// place, its slipping threshold fitted. The rest is tied to what is declared: the slipping
+// stiffness is the Kelvin-Voigt stiffness, and beta and the hardening envelopes are the seed-000
+// rig's (configs/jarroux2019_industrial_model3.toml), which carry a rig's weight share.
+Effect RibbonDryFriction(const TdbParams& t) {
+  const std::string name = t.name;
+  Effect e;
+  e.name = "ribbon_dry_friction:" + name;
+  e.family = "ribbon_dry_friction";
+  e.description = fmt::format(
+      "dry friction in TDB {}'s ribbon: the generalized Dahl law (Jarroux 2019 Eq. (1)-(3)) in "
+      "place of Kelvin-Voigt, slipping threshold fitted",
+      name);
+  e.parameters = {{"slipping_threshold_N", 0.0, 5000.0, {200.0, 1000.0, 2500.0}}};
+  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
+  const KelvinVoigtRibbonParams kv = t.four_dof.kelvin_voigt;
+  e.apply = [name, kv](const std::vector<double>& v, ModelParams* p) {
+    for (TdbParams& t : p->tdbs) {
+      if (t.name != name) continue;
+      DahlRibbonParams& d = t.four_dof.dahl;
+      t.four_dof.ribbon = RibbonLaw::kDahl;
+      d.slipping_threshold_N = std::max(0.0, v[0]);
+      d.threshold_scale = 1.0;
+      d.slipping_stiffness_N_per_m = kv.stiffness_N_per_m;
+      d.beta_per_m = 1e6;
+      d.upper_hardening_N = d.lower_hardening_N = 50.0;
+      d.upper_hardening_rate_per_m = d.lower_hardening_rate_per_m = 2.5e4;
+    }
+  };
+  e.config = [name, kv](const std::vector<double>& v) {
+    return fmt::format(
+        "[tdb.{0}.four_dof]\nribbon = \"dahl\"\n[tdb.{0}.four_dof.dahl]\n"
+        "slipping_threshold_N = {1:.6g}\nslipping_stiffness_N_per_m = {2:.6g}\nbeta_per_m = 1e6\n"
+        "upper_hardening_N = 50.0\nupper_hardening_rate_per_m = 2.5e4\nlower_hardening_N = 50.0\n"
+        "lower_hardening_rate_per_m = 2.5e4\n",
+        name, std::max(0.0, v[0]), kv.stiffness_N_per_m);
+  };
+  return e;
+}
+
+// A ribbon whose stiffness is cross-coupled so as to oppose the outer race's whirl (Jarroux
+// 2016, seed 001, Eq. (1)); its stiffness and damping are the declared Kelvin-Voigt ones.
+Effect RibbonCrossCoupling(const TdbParams& t) {
+  const std::string name = t.name;
+  Effect e;
+  e.name = "ribbon_cross_coupling:" + name;
+  e.family = "ribbon_cross_coupling";
+  e.description = fmt::format(
+      "cross-coupled stiffness of TDB {}'s ribbon opposing the outer race's whirl (Jarroux 2016 "
+      "Eq. (1)), eta fitted",
+      name);
+  e.parameters = {{"cross_coupling", 0.0, 2.0, {0.1, 0.5, 1.0}}};
+  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
+  const KelvinVoigtRibbonParams kv = t.four_dof.kelvin_voigt;
+  e.apply = [name, kv](const std::vector<double>& v, ModelParams* p) {
+    for (TdbParams& t : p->tdbs) {
+      if (t.name != name) continue;
+      t.four_dof.ribbon = RibbonLaw::kCrossCoupled;
+      t.four_dof.cross_coupled.stiffness_N_per_m = kv.stiffness_N_per_m;
+      t.four_dof.cross_coupled.damping_N_s_per_m = kv.damping_N_s_per_m;
+      t.four_dof.cross_coupled.cross_coupling = std::max(0.0, v[0]);
+    }
+  };
+  e.config = [name, kv](const std::vector<double>& v) {
+    return fmt::format(
+        "[tdb.{0}.four_dof]\nribbon = \"cross_coupled\"\n[tdb.{0}.four_dof.cross_coupled]\n"
+        "stiffness_N_per_m = {1:.6g}\ndamping_N_s_per_m = {2:.6g}\ncross_coupling = {3:.6g}\n",
+        name, kv.stiffness_N_per_m, kv.damping_N_s_per_m, std::max(0.0, v[0]));
+  };
+  return e;
+}
+
 }  // namespace
 
 std::vector<Effect> EffectLibrary(const ModelParams& declared) {
@@ -247,6 +319,12 @@ std::vector<Effect> EffectLibrary(const ModelParams& declared) {
   }
   for (const TdbParams& t : declared.tdbs) {
     if (t.spin.enabled) effects.push_back(TdbDrag(t));
+  }
+  // Ribbon laws apply to 4-DOF TDBs whose ribbon is declared Kelvin-Voigt.
+  for (const TdbParams& t : declared.tdbs) {
+    if (t.model != TdbModelKind::kFourDof || t.four_dof.ribbon != RibbonLaw::kKelvinVoigt) continue;
+    effects.push_back(RibbonDryFriction(t));
+    effects.push_back(RibbonCrossCoupling(t));
   }
   return effects;
 }

@@ -36,8 +36,10 @@ void ParallelFor(std::size_t count, int threads, const Job& job) {
 }  // namespace
 
 double AgreementLimit(const Selection& s, const SelectionRules& rules) {
-  // Noise and model error add in quadrature.
-  return std::hypot(rules.explained_over_floor * s.noise_floor, rules.tolerance);
+  // Noise, the model's own sensitivity and model error add in quadrature.
+  return std::sqrt(std::pow(rules.explained_over_floor * s.noise_floor, 2) +
+                   std::pow(rules.model_floor_factor * s.model_floor, 2) +
+                   rules.tolerance * rules.tolerance);
 }
 
 double AboveNoise(double rms, double noise_floor) {
@@ -52,7 +54,15 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
                         double noise_floor, const SelectionRules& rules) {
   Selection s;
   s.noise_floor = noise_floor;
-  const double sse_before = cost.Residual(cost.declared()).squaredNorm();
+  const Eigen::VectorXd residual_before = cost.Residual(cost.declared());
+  const double sse_before = residual_before.squaredNorm();
+  {
+    RecordRunOptions half = cost.run_options();
+    half.step_s = 0.5 * (half.step_s > 0 ? half.step_s : cost.declared().simulation.step_s);
+    const SimulatedRecord fine =
+        SimulateOnRecord(cost.declared(), cost.measurement(), cost.record(), half);
+    s.model_floor = OverallRms(cost, (cost.Residual(fine) - residual_before).squaredNorm());
+  }
   s.rms_before = OverallRms(cost, sse_before);
   s.bic_before = Bic(sse_before, cost.size(), 0);
   s.rms_after = s.rms_before;

@@ -17,6 +17,7 @@ struct SelectionRules {
   /// Left within this many times the noise floor (in quadrature with the tolerance), the
   /// residual is explained: the floor is itself estimated from the record.
   double explained_over_floor = 1.25;
+  double model_floor_factor = 2.0;  ///< on the model floor
   /// An overall relative RMS (RecordCost) within which model and record agree anyway: noise,
   /// quantisation and a finer step in the record leave about 3e-4 with the true model
   /// (clean records of the PID rig at 5 and 2.5 us steps); six times that.
@@ -41,7 +42,10 @@ struct CandidateScore {
 struct Selection {
   double rms_before = 0.0;  ///< overall relative RMS of the declared model
   double bic_before = 0.0;
-  double noise_floor = 0.0;                ///< overall relative RMS a perfect model would leave
+  double noise_floor = 0.0;  ///< overall relative RMS a perfect model would leave
+  /// How much the declared model's own prediction moves when its step is halved: the drop's
+  /// sensitivity (chaos after impacts, the start state) that no effect can fit away.
+  double model_floor = 0.0;
   std::vector<CandidateScore> candidates;  ///< singles in library order, then pairs
   std::vector<std::string> chosen;         ///< effect names
   EffectFit chosen_fit;                    ///< their parameters
@@ -50,8 +54,8 @@ struct Selection {
   std::string reason;   ///< one sentence: why this verdict
 };
 
-/// What the residual is judged against: the noise floor's multiple and the tolerance, in
-/// quadrature.
+/// What the residual is judged against: the noise floor's multiple, twice the model floor and
+/// the tolerance, in quadrature.
 double AgreementLimit(const Selection& s, const SelectionRules& rules);
 
 /// The part of an overall relative RMS that is model error: noise adds in quadrature, and no

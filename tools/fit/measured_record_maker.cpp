@@ -3,95 +3,20 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <limits>
 #include <set>
 #include <vector>
 
 #include "controller_if/offline_run.hpp"
 #include "controller_if/portable_random.hpp"
-#include "controller_if/run_record.hpp"
 #include "controller_if/sensor_emulator.hpp"
-#include "rt_core/amb_force.hpp"
 #include "rt_core/model.hpp"
+#include "tools/fit/current_sampler.hpp"
 
 namespace ambdrop {
 namespace {
 
-using Currents = std::array<std::array<double, 2>, kMaxAmbs>;
-
-/// Each sample's coil control currents: what the controller commanded while the axis has
-/// power; after it loses power the current it had then, fading with the flux
-/// (rt_core/amb_force.hpp: force ~ exp(-2t/tau), so current ~ exp(-t/tau); gone at once
-/// without flux decay), as a coil-current sensor would read it. A step's input reaches the
-/// recorder after that step's observation, so a sample is filled only once the input after it
-/// is known: it takes the last input applied from its step or earlier.
-class CurrentSampler final : public RunRecorder {
- public:
-  CurrentSampler(const ModelParams& params, double step_s) : params_(params), step_s_(step_s) {
-    for (auto& a : lost_at_) a = {-1, -1};
-  }
-  /// Called for each sample in step order, before the inputs of that step arrive.
-  void AddSample(std::int64_t step) {
-    steps_.push_back(step);
-    current_A_.emplace_back();
-  }
-  /// Fills the samples still open; the last input holds to the end.
-  const std::vector<Currents>& Finish() noexcept {
-    FillBefore(std::numeric_limits<std::int64_t>::max());
-    return current_A_;
-  }
-
-  void OnStart(const RecordedStart& start) noexcept override { held_ = start.loop_current_A; }
-  void OnInput(const RecordedInput& input) noexcept override {
-    FillBefore(input.step);
-    held_ = input.current_A;
-  }
-  // Power events come before the step's input, as PowerState applies them.
-  void OnPower(const RecordedPower& p) noexcept override {
-    FillBefore(p.step);
-    for (std::size_t a = 0; a < params_.ambs.size(); ++a) {
-      if ((p.event.amb_mask & (1u << a)) == 0) continue;
-      const bool axes[2] = {p.event.axis_x, p.event.axis_y};
-      for (int axis = 0; axis < 2; ++axis) {
-        if (!axes[axis]) continue;
-        if (p.event.restore) {
-          lost_at_[a][axis] = -1;
-        } else if (lost_at_[a][axis] < 0) {
-          lost_at_[a][axis] = p.step;
-          frozen_[a][axis] = held_[a][axis];
-        }
-      }
-    }
-  }
-  void OnSensors(const RecordedSensors&) noexcept override {}
-  void OnState(const State&, const Observation&) noexcept override {}
-
- private:
-  void FillBefore(std::int64_t step) noexcept {
-    while (filled_ < steps_.size() && steps_[filled_] < step) {
-      Currents& c = current_A_[filled_];
-      c = held_;
-      for (std::size_t a = 0; a < params_.ambs.size(); ++a) {
-        for (int axis = 0; axis < 2; ++axis) {
-          if (lost_at_[a][axis] < 0) continue;
-          const double t = static_cast<double>(steps_[filled_] - lost_at_[a][axis]) * step_s_;
-          c[a][axis] = frozen_[a][axis] * std::sqrt(FluxDecayForceScale(params_.ambs[a], t));
-        }
-      }
-      ++filled_;
-    }
-  }
-  const ModelParams& params_;
-  double step_s_;
-  std::vector<std::int64_t> steps_;
-  std::vector<Currents> current_A_;
-  std::size_t filled_ = 0;
-  Currents held_{};
-  Currents frozen_{};
-  std::array<std::array<std::int64_t, 2>, kMaxAmbs> lost_at_{};
-};
+using Currents = CurrentSampler::Currents;
 
 const char* AxisName(int axis) {
   return axis == 0 ? "x" : "y";

@@ -125,7 +125,13 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
       lo = std::min(lo, v[j]);
       hi = std::max(hi, v[j]);
     }
-    const double range = hi > lo ? hi - lo : 1.0;
+    // A channel that carries nothing but its noise (a coil current of an AMB law that takes
+    // none, a sensor that never moves) tells the fit nothing: it is left out.
+    if (!(hi - lo > 10.0 * NoiseSigma(v, start_row, rows))) {
+      ++uninformative_;
+      continue;
+    }
+    const double range = hi - lo;
     range_.back() = range;
     // The channel's weight is shared between its sample-by-sample part and its blocks.
     const double parts = (raw.empty() ? 0.0 : 1.0) + static_cast<double>(blocks.size());

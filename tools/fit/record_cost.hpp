@@ -45,6 +45,8 @@ class RecordCost {
 
   std::size_t size() const { return samples_.size() + blocks_.size(); }
   int channels() const { return channels_; }
+  /// Channels left out because their range is within ten times their noise.
+  int uninformative_channels() const { return uninformative_; }
   double compare_from_s() const { return compare_from_s_; }
   double early_end_s() const { return early_end_s_; }
   double settled_from_s() const { return settled_from_s_; }
@@ -79,6 +81,7 @@ class RecordCost {
   double early_end_s_ = 0.0;
   double settled_from_s_ = 0.0;
   int channels_ = 0;
+  int uninformative_ = 0;
   std::vector<Sample> samples_;
   std::vector<Block> blocks_;
   std::vector<int> column_;    // record column per measurement channel

@@ -102,8 +102,13 @@ double RecordTriggerTime(const MeasurementParams& m, const MeasuredRecord& r) {
 }
 
 bool ClosedLoop(const ModelParams& params, const RecordRunOptions& options) {
-  return options.pre_trigger == PreTrigger::kAuto &&
-         params.controller.kind == ControllerKind::kInternalPid;
+  if (options.pre_trigger != PreTrigger::kAuto) return false;
+  if (params.controller.kind == ControllerKind::kInternalPid) return true;
+  // AMBs with the equivalent law hold the rotor by their stiffness and damping, as a controller
+  // would: the rig levitates by itself and needs no measured currents.
+  return !params.ambs.empty() &&
+         std::all_of(params.ambs.begin(), params.ambs.end(),
+                     [](const AmbParams& a) { return a.law == AmbForceLaw::kEquivalent; });
 }
 
 SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementParams& m,
@@ -179,12 +184,15 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
   std::optional<SensorEmulator> controller_sensors;
   std::int64_t substeps = 1;
   State state;
-  if (closed) {
+  const bool controlled = closed && model.params.controller.kind == ControllerKind::kInternalPid;
+  if (controlled) {
     substeps = ControllerSubsteps(model);
     const double period = static_cast<double>(substeps) * dt;
     controller.emplace(model, period);
     controller_sensors.emplace(model.params.sensors, period);
     controller->Initial(&input);
+    state = sim.InitialState(static_load);
+  } else if (closed) {
     state = sim.InitialState(static_load);
   } else {
     measured_currents(t_start, false);
@@ -266,7 +274,7 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
       measured_currents(t_record, true);
       power.Apply(failure, k, input);
     }
-    if (closed && k % substeps == 0) {
+    if (controlled && k % substeps == 0) {
       sim.Observe(state, &obs);
       controller_sensors->Sample(obs, &controller_readings);
       controller->Update(controller_readings, &input);

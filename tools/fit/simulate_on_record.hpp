@@ -15,8 +15,9 @@ namespace ambdrop {
 
 /// What drives the AMBs before the trigger.
 enum class PreTrigger {
-  /// The declared controller if the config has one (closed loop from the record's start: the
-  /// measured currents are then predictions to compare), else the measured currents.
+  /// The declared controller if the config has one, or AMBs of the equivalent law (closed loop
+  /// from the record's start: the measured currents are then predictions to compare), else the
+  /// measured currents.
   kAuto,
   kMeasuredCurrents,  ///< always the measured currents, from `lead_s` before the trigger
 };

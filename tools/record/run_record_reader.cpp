@@ -95,10 +95,26 @@ class Builder {
       if (!InOrder(e, s.step)) return false;
       file_->sensors.push_back(s);
     } else if (ch == kRecStateChannel) {
-      // Monitoring only: a replay recomputes the state. Its step bounds the replay.
+      // A replay recomputes the state (its step bounds the replay); a measurement reads it.
       ambdrop_lcm::emulator_state_t m{};
       if (!Decode(e, &m)) return Bad(e, "state");
       if (!InOrder(e, m.step_index)) return false;
+      RecordedStateSample s;
+      s.step = m.step_index;
+      s.time_s = m.time_s;
+      s.power_on = m.power_on;
+      s.spin_speed_rad_s = m.spin_speed_rad_s;
+      s.spin_angle_rad = m.spin_angle_rad;
+      s.tdb_count = m.tdb_count;
+      for (int t = 0; t < kMaxTdbs; ++t) {
+        s.tdb_normal_force_N[t] = m.tdb_normal_force_N[t];
+        s.tdb_tangential_force_N[t] = m.tdb_tangential_force_N[t];
+        s.tdb_penetration_m[t] = m.tdb_penetration_m[t];
+        s.tdb_race_speed_rad_s[t] = m.tdb_race_speed_rad_s[t];
+        s.tdb_journal_xy_m[t] = {m.tdb_journal_x_m[t], m.tdb_journal_y_m[t]};
+      }
+      s.fault_count = m.fault_count;
+      file_->states.push_back(s);
     } else if (ch == kRecFooterChannel) {
       ambdrop_lcm::record_footer_t m{};
       if (!Decode(e, &m)) return Bad(e, "footer");
