@@ -23,13 +23,6 @@ constexpr std::array<std::pair<std::string_view, MeasuredQuantity>, 5> kQuantiti
     {"rotor_speed", MeasuredQuantity::kRotorSpeed},
 }};
 
-std::string_view NameOf(MeasuredQuantity quantity) {
-  for (const auto& [name, q] : kQuantities) {
-    if (q == quantity) return name;
-  }
-  return "unknown";
-}
-
 bool TakesSensor(MeasuredQuantity q) {
   return q == MeasuredQuantity::kDisplacement;
 }
@@ -64,7 +57,7 @@ int ReadComponent(const TableReader& t, std::string_view key, const std::vector<
 // A misplaced name is usually a copy-paste slip between channels, so the message says which
 // quantity the key belongs to rather than only that it is unknown here.
 void RejectForeignKeys(const TableReader& t, MeasuredQuantity q) {
-  const std::string_view name = NameOf(q);
+  const std::string_view name = MeasuredQuantityName(q);
   if (!TakesSensor(q)) {
     t.Reject("sensor", fmt::format("no sensor for {} (only displacement takes sensor)", name));
   }
@@ -104,7 +97,7 @@ MeasurementChannel ReadChannel(const TableReader& t, const ModelParams& params) 
 }  // namespace
 
 std::string MeasurementChannel::Describe(const ModelParams& params) const {
-  std::string out(NameOf(quantity));
+  std::string out(MeasuredQuantityName(quantity));
   // A channel checked against other params than its own must not read past their lists.
   const auto append_name = [this, &out](const auto& list) {
     out += ' ';
@@ -160,4 +153,11 @@ MeasurementParams ReadMeasurement(const TableReader& table, const ModelParams& p
 }
 
 }  // namespace config_detail
+std::string_view MeasuredQuantityName(MeasuredQuantity quantity) {
+  for (const auto& [name, q] : kQuantities) {
+    if (q == quantity) return name;
+  }
+  return "unknown";
+}
+
 }  // namespace ambdrop

@@ -15,6 +15,7 @@
 // current); tdb_normal_force: tdb (N); tdb_speed: tdb (rad/s, inner race); rotor_speed (rad/s).
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rt_core/model_params.hpp"
@@ -34,6 +35,9 @@ enum class MeasuredQuantity {
   kTdbSpeed,
   kRotorSpeed,
 };
+
+/// The config spelling of a quantity: "displacement", "current", "tdb_normal_force", ...
+std::string_view MeasuredQuantityName(MeasuredQuantity quantity);
 
 struct MeasurementChannel {
   std::string column;  ///< CSV header name

@@ -11,6 +11,12 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 using Q = MeasuredQuantity;
 
+// The TDB or sensor an effect names: the library makes effects for the declared ones only.
+template <typename T>
+T& Named(std::vector<T>& list, const std::string& name) {
+  return *std::find_if(list.begin(), list.end(), [&](const T& x) { return x.name == name; });
+}
+
 bool HasFriction(const TdbParams& t) {
   // The regularised Coulomb law applies to these models' rotor / inner-race contact.
   return t.model == TdbModelKind::kContactLaw || t.model == TdbModelKind::kFourDof;
@@ -33,10 +39,8 @@ Effect TdbMisalignment(const TdbParams& t) {
                   {"y_m", -0.8 * c, 0.8 * c, {0.0, 0.3 * c, -0.3 * c}}};
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
   e.apply = [name](const std::vector<double>& v, ModelParams* p) {
-    for (TdbParams& t : p->tdbs) {
-      if (t.name != name) continue;
-      t.misalignment = {true, v[0], v[1]};
-    }
+    TdbParams& t = Named(p->tdbs, name);
+    t.misalignment = {true, v[0], v[1]};
   };
   e.config = [name](const std::vector<double>& v) {
     return fmt::format("[tdb.{}.misalignment]\nenabled = true\nx_m = {:.6g}\ny_m = {:.6g}\n", name,
@@ -141,12 +145,10 @@ Effect SensorRunout(const SensorParams& s, double clearance) {
                   {"phase_1x_rad", -kPi, kPi, {0.0, 0.5 * kPi, kPi, -0.5 * kPi}, true}};
   e.revealed_by = {Q::kDisplacement};
   e.apply = [name](const std::vector<double>& v, ModelParams* p) {
-    for (SensorParams& s : p->sensors) {
-      if (s.name != name) continue;
-      s.runout.enabled = true;
-      s.runout.amplitude_1x_m = std::abs(v[0]);
-      s.runout.phase_1x_rad = v[1];
-    }
+    SensorParams& s = Named(p->sensors, name);
+    s.runout.enabled = true;
+    s.runout.amplitude_1x_m = std::abs(v[0]);
+    s.runout.phase_1x_rad = v[1];
   };
   e.config = [name](const std::vector<double>& v) {
     return fmt::format(
@@ -166,11 +168,9 @@ Effect SensorGainOffset(const SensorParams& s, double clearance) {
                   {"offset_m", -0.5 * clearance, 0.5 * clearance, {s.offset_m}}};
   e.revealed_by = {Q::kDisplacement};
   e.apply = [name](const std::vector<double>& v, ModelParams* p) {
-    for (SensorParams& s : p->sensors) {
-      if (s.name != name) continue;
-      s.gain = v[0];
-      s.offset_m = v[1];
-    }
+    SensorParams& s = Named(p->sensors, name);
+    s.gain = v[0];
+    s.offset_m = v[1];
   };
   e.config = [name](const std::vector<double>& v) {
     return fmt::format(
@@ -192,12 +192,10 @@ Effect SensorLag(const SensorParams& s, double sample_s) {
                   {"filter_time_constant_s", 0.0, 1e-3, {0.0, 2e-4, 0.0}}};
   e.revealed_by = {Q::kDisplacement};
   e.apply = [name](const std::vector<double>& v, ModelParams* p) {
-    for (SensorParams& s : p->sensors) {
-      if (s.name != name) continue;
-      s.lag.enabled = true;
-      s.lag.delay_s = std::max(0.0, v[0]);
-      s.lag.cutoff_Hz = v[1] > 1e-7 ? 1.0 / (2 * kPi * v[1]) : 0.0;
-    }
+    SensorParams& s = Named(p->sensors, name);
+    s.lag.enabled = true;
+    s.lag.delay_s = std::max(0.0, v[0]);
+    s.lag.cutoff_Hz = v[1] > 1e-7 ? 1.0 / (2 * kPi * v[1]) : 0.0;
   };
   e.config = [name](const std::vector<double>& v) {
     return fmt::format("[sensor.{}.lag]\nenabled = true\ndelay_s = {:.6g}\ncutoff_Hz = {:.6g}\n",
@@ -215,9 +213,7 @@ Effect TdbDrag(const TdbParams& t) {
   e.parameters = {{"drag_torque_N_m", 0.0, 5.0, {0.0, 0.05, 0.5}}};
   e.revealed_by = {Q::kTdbSpeed, Q::kDisplacement, Q::kRotorSpeed};
   e.apply = [name](const std::vector<double>& v, ModelParams* p) {
-    for (TdbParams& t : p->tdbs) {
-      if (t.name == name) t.spin.drag_torque_N_m = std::max(0.0, v[0]);
-    }
+    Named(p->tdbs, name).spin.drag_torque_N_m = std::max(0.0, v[0]);
   };
   e.config = [name](const std::vector<double>& v) {
     return fmt::format("[tdb.{}.spin]\ndrag_torque_N_m = {:.6g}\n", name, std::max(0.0, v[0]));
@@ -242,17 +238,15 @@ Effect RibbonDryFriction(const TdbParams& t) {
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
   const KelvinVoigtRibbonParams kv = t.four_dof.kelvin_voigt;
   e.apply = [name, kv](const std::vector<double>& v, ModelParams* p) {
-    for (TdbParams& t : p->tdbs) {
-      if (t.name != name) continue;
-      DahlRibbonParams& d = t.four_dof.dahl;
-      t.four_dof.ribbon = RibbonLaw::kDahl;
-      d.slipping_threshold_N = std::max(0.0, v[0]);
-      d.threshold_scale = 1.0;
-      d.slipping_stiffness_N_per_m = kv.stiffness_N_per_m;
-      d.beta_per_m = 1e6;
-      d.upper_hardening_N = d.lower_hardening_N = 50.0;
-      d.upper_hardening_rate_per_m = d.lower_hardening_rate_per_m = 2.5e4;
-    }
+    TdbParams& t = Named(p->tdbs, name);
+    DahlRibbonParams& d = t.four_dof.dahl;
+    t.four_dof.ribbon = RibbonLaw::kDahl;
+    d.slipping_threshold_N = std::max(0.0, v[0]);
+    d.threshold_scale = 1.0;
+    d.slipping_stiffness_N_per_m = kv.stiffness_N_per_m;
+    d.beta_per_m = 1e6;
+    d.upper_hardening_N = d.lower_hardening_N = 50.0;
+    d.upper_hardening_rate_per_m = d.lower_hardening_rate_per_m = 2.5e4;
   };
   e.config = [name, kv](const std::vector<double>& v) {
     return fmt::format(
@@ -280,13 +274,11 @@ Effect RibbonCrossCoupling(const TdbParams& t) {
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
   const KelvinVoigtRibbonParams kv = t.four_dof.kelvin_voigt;
   e.apply = [name, kv](const std::vector<double>& v, ModelParams* p) {
-    for (TdbParams& t : p->tdbs) {
-      if (t.name != name) continue;
-      t.four_dof.ribbon = RibbonLaw::kCrossCoupled;
-      t.four_dof.cross_coupled.stiffness_N_per_m = kv.stiffness_N_per_m;
-      t.four_dof.cross_coupled.damping_N_s_per_m = kv.damping_N_s_per_m;
-      t.four_dof.cross_coupled.cross_coupling = std::max(0.0, v[0]);
-    }
+    TdbParams& t = Named(p->tdbs, name);
+    t.four_dof.ribbon = RibbonLaw::kCrossCoupled;
+    t.four_dof.cross_coupled.stiffness_N_per_m = kv.stiffness_N_per_m;
+    t.four_dof.cross_coupled.damping_N_s_per_m = kv.damping_N_s_per_m;
+    t.four_dof.cross_coupled.cross_coupling = std::max(0.0, v[0]);
   };
   e.config = [name, kv](const std::vector<double>& v) {
     return fmt::format(

@@ -10,22 +10,6 @@
 namespace ambdrop {
 namespace {
 
-const char* QuantityName(MeasuredQuantity q) {
-  switch (q) {
-    case MeasuredQuantity::kDisplacement:
-      return "displacement";
-    case MeasuredQuantity::kCurrent:
-      return "current";
-    case MeasuredQuantity::kTdbNormalForce:
-      return "tdb_normal_force";
-    case MeasuredQuantity::kTdbSpeed:
-      return "tdb_speed";
-    case MeasuredQuantity::kRotorSpeed:
-      return "rotor_speed";
-  }
-  return "?";
-}
-
 void Residuals(JsonWriter& json, const ResidualReport& r, double noise_floor) {
   json.BeginObject();
   json.Key("overall").Number(r.overall);
@@ -158,7 +142,7 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     json.BeginObject(true);
     json.Key("effect").String(e.name);
     json.Key("needs").BeginArray(true);
-    for (const MeasuredQuantity q : e.revealed_by) json.String(QuantityName(q));
+    for (const MeasuredQuantity q : e.revealed_by) json.String(MeasuredQuantityName(q));
     json.EndArray();
     json.EndObject();
   }

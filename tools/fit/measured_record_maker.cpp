@@ -133,22 +133,6 @@ std::uint64_t StreamSeed(std::uint64_t seed, const MeasurementChannel& c) {
   return seed * kStreams + id;
 }
 
-const char* QuantityName(MeasuredQuantity q) {
-  switch (q) {
-    case MeasuredQuantity::kDisplacement:
-      return "displacement";
-    case MeasuredQuantity::kCurrent:
-      return "current";
-    case MeasuredQuantity::kTdbNormalForce:
-      return "tdb_normal_force";
-    case MeasuredQuantity::kTdbSpeed:
-      return "tdb_speed";
-    case MeasuredQuantity::kRotorSpeed:
-      return "rotor_speed";
-  }
-  return "unknown";
-}
-
 /// A TOML float that reads back to the same double ("{}" is the shortest round trip; TOML needs
 /// a point or an exponent to make it a float).
 std::string TomlFloat(double value) {
@@ -279,7 +263,7 @@ std::string MeasurementTableToml(const ModelParams& truth, const MeasurementPara
   for (const MeasurementChannel& c : m.channels) {
     out += "\n[[measurement.channel]]\n";
     out += "column = " + TomlString(c.column) + "\n";
-    out += fmt::format("quantity = \"{}\"\n", QuantityName(c.quantity));
+    out += fmt::format("quantity = \"{}\"\n", MeasuredQuantityName(c.quantity));
     switch (c.quantity) {
       case MeasuredQuantity::kDisplacement:
         out += "sensor = " + TomlString(truth.sensors.at(c.index).name) + "\n";
