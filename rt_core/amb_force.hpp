@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "rt_core/amb_params.hpp"
+#include "rt_core/deterministic_exp.hpp"
 
 namespace ambdrop {
 
@@ -86,7 +87,7 @@ inline double CurrentForStaticForce(const AmbParams& a, double force_N) noexcept
 /// exp(-2 t / tau) (currents decay as exp(-t/tau); the force is quadratic in them).
 inline double FluxDecayForceScale(const AmbParams& a, double seconds) noexcept {
   if (!a.flux_decay.enabled || !(a.flux_decay.time_constant_s > 0.0)) return 0.0;
-  return std::exp(-2.0 * seconds / a.flux_decay.time_constant_s);
+  return DeterministicExp(-2.0 * seconds / a.flux_decay.time_constant_s);
 }
 
 }  // namespace ambdrop

@@ -56,8 +56,11 @@ void BallBearingTdb::InitialState(double* s) const noexcept {
     ex += fx / tangent;
     ey += (fy + weight_N) / tangent;
   }
-  s[kInnerX] = s[kOuterX] + ex;
-  s[kInnerY] = s[kOuterY] + ey;
+  // Without the support there is no outer race state: the outer race is the housing, at 0.
+  const double ox = b.support.enabled ? s[kOuterX] : 0.0;
+  const double oy = b.support.enabled ? s[kOuterY] : 0.0;
+  s[kInnerX] = ox + ex;
+  s[kInnerY] = oy + ey;
 }
 
 void BallBearingTdb::Evaluate(const JournalMotion& j, const double* s, double* rate,
@@ -144,7 +147,8 @@ void BallBearingTdb::Evaluate(const JournalMotion& j, const double* s, double* r
     support_x = spring_x;
     support_y = spring_y;
   }
-  out->support_force_N = std::sqrt(support_x * support_x + support_y * support_y);
+  out->support_x_N = support_x;
+  out->support_y_N = support_y;
 
   // Race spin, Jarroux 2019 Eq. (9) with Ft Ri (Chen 2019 Fig. 15), M1 on the ball load.
   const double bearing_load = std::sqrt(bearing_x * bearing_x + bearing_y * bearing_y);

@@ -215,9 +215,11 @@ void CatcherBearingTdb::Evaluate(const JournalMotion& j, const double* s, double
     hr[kHouseY] = house.vy;
     hr[kHouseVx] = (ring_x - last_x) / c.ring.house_mass_kg;
     hr[kHouseVy] = (ring_y - last_y) / c.ring.house_mass_kg + c.gravity_y_m_s2;
-    out->support_force_N = std::sqrt(ring_x * ring_x + ring_y * ring_y);
+    out->support_x_N = ring_x;
+    out->support_y_N = ring_y;
   } else {
-    out->support_force_N = std::sqrt(last_x * last_x + last_y * last_y);
+    out->support_x_N = last_x;
+    out->support_y_N = last_y;
   }
 }
 

@@ -44,7 +44,8 @@ void ContactLawTdb::Evaluate(const JournalMotion& j, const double* state, double
     out->fy_N = -normal * g.ny + tangential_on_rotor * g.nx;
     out->torque_on_rotor_N_m = -friction * p.journal_radius_m;
     // Without race masses the housing takes the whole contact force.
-    out->support_force_N = std::sqrt(out->fx_N * out->fx_N + out->fy_N * out->fy_N);
+    out->support_x_N = out->fx_N;
+    out->support_y_N = out->fy_N;
   }
   out->normal_force_N = normal;
   out->tangential_force_N = friction;

@@ -15,7 +15,9 @@ namespace ambdrop {
 FourDofTdb::FourDofTdb(const TdbParams& params)
     : TouchdownBearing(params),
       bearing_(BallBearingFromHertz(params.four_dof.bearing)),
-      state_size_(params.four_dof.ribbon == RibbonLaw::kDahl ? kStatesDahl : kStatesKelvinVoigt) {
+      state_size_(params.four_dof.ribbon == RibbonLaw::kDahl ? kStatesDahl : kStatesKelvinVoigt),
+      inverse_inner_mass_(1.0 / params.four_dof.inner_race_mass_kg),
+      inverse_outer_mass_(1.0 / params.four_dof.outer_race_mass_kg) {
   const FourDofParams& f = params.four_dof;
   if (!(f.inner_race_mass_kg > 0.0) || !(f.outer_race_mass_kg > 0.0)) {
     throw std::invalid_argument("tdb '" + params.name + "': race masses must be positive");
@@ -74,8 +76,9 @@ void FourDofTdb::Evaluate(const JournalMotion& j, const double* s, double* rate,
   const double distance = std::sqrt(dx * dx + dy * dy);
   double nx = 1.0, ny = 0.0;
   if (distance > 0.0) {
-    nx = dx / distance;
-    ny = dy / distance;
+    const double inverse_distance = 1.0 / distance;
+    nx = dx * inverse_distance;
+    ny = dy * inverse_distance;
   }
   const double rvx = j.vx_m_s - ivx;
   const double rvy = j.vy_m_s - ivy;
@@ -135,11 +138,14 @@ void FourDofTdb::Evaluate(const JournalMotion& j, const double* s, double* rate,
   // Outer race / housing: Hunt-Crossley, Eq. (10), beyond the ribbon clearance (Jarroux 2016
   // (seed 001), Sec. 2: "modeled as the rotor to inner race normal contact force").
   double housing_x = 0.0, housing_y = 0.0;  // on the outer race
-  const double outer_radius = std::sqrt(ox * ox + oy * oy);
-  const double uh = outer_radius - f.ribbon_clearance_m;
-  if (uh > 0.0) {
-    const double onx = ox / outer_radius;
-    const double ony = oy / outer_radius;
+  // The root is taken only once the ribbon clearance is used up, which the races rarely do.
+  const double outer_radius_squared = ox * ox + oy * oy;
+  if (outer_radius_squared > f.ribbon_clearance_m * f.ribbon_clearance_m) {
+    const double outer_radius = std::sqrt(outer_radius_squared);
+    const double uh = outer_radius - f.ribbon_clearance_m;
+    const double inverse_radius = 1.0 / outer_radius;
+    const double onx = ox * inverse_radius;
+    const double ony = oy * inverse_radius;
     // Jarroux 2019, Eq. (10)
     const double fh = HuntCrossleyForce(f.housing_contact, uh, ovx * onx + ovy * ony);
     housing_x = -fh * onx;
@@ -149,12 +155,12 @@ void FourDofTdb::Evaluate(const JournalMotion& j, const double* s, double* rate,
   // Race motion: Newton on each race, with the races' weight.
   rate[kInnerX] = ivx;
   rate[kInnerY] = ivy;
-  rate[kInnerVx] = (bearing_x - on_rotor_x) / f.inner_race_mass_kg;
-  rate[kInnerVy] = (bearing_y - on_rotor_y) / f.inner_race_mass_kg + f.gravity_y_m_s2;
+  rate[kInnerVx] = (bearing_x - on_rotor_x) * inverse_inner_mass_;
+  rate[kInnerVy] = (bearing_y - on_rotor_y) * inverse_inner_mass_ + f.gravity_y_m_s2;
   rate[kOuterX] = ovx;
   rate[kOuterY] = ovy;
-  rate[kOuterVx] = (housing_x - bearing_x - ribbon_x) / f.outer_race_mass_kg;
-  rate[kOuterVy] = (housing_y - bearing_y - ribbon_y) / f.outer_race_mass_kg + f.gravity_y_m_s2;
+  rate[kOuterVx] = (housing_x - bearing_x - ribbon_x) * inverse_outer_mass_;
+  rate[kOuterVy] = (housing_y - bearing_y - ribbon_y) * inverse_outer_mass_ + f.gravity_y_m_s2;
 
   // Race spin, Jarroux 2019 Eq. (9), M1 on the load the balls carry.
   const double bearing_load = std::sqrt(bearing_x * bearing_x + bearing_y * bearing_y);
@@ -163,7 +169,8 @@ void FourDofTdb::Evaluate(const JournalMotion& j, const double* s, double* rate,
   // What the housing (the rig's load cells) receives: +frd from the ribbon, minus the contact.
   const double support_x = ribbon_x - housing_x;
   const double support_y = ribbon_y - housing_y;
-  out->support_force_N = std::sqrt(support_x * support_x + support_y * support_y);
+  out->support_x_N = support_x;
+  out->support_y_N = support_y;
 }
 
 }  // namespace ambdrop

@@ -51,6 +51,9 @@ class FourDofTdb final : public TouchdownBearing {
  private:
   BallBearingCoefficients bearing_;
   int state_size_;
+  // Reciprocal race masses (1/kg): the step multiplies instead of dividing four times a call.
+  double inverse_inner_mass_;
+  double inverse_outer_mass_;
 };
 
 }  // namespace ambdrop

@@ -56,24 +56,35 @@ void Simulator::Derivative(const StateVector& y, const ControlInput& input, Stat
 
 StepStatus Simulator::Step(State* state, const ControlInput& input) noexcept {
   const double h = step_s_;
+  const double half_h = 0.5 * h;
+  const double sixth_h = h / 6.0;
   StateVector& y = state->y;
-  // Classical RK4 with the control input held over the step.
+  const Eigen::Index size = y.size();
+  double* yd = y.data();
+  double* sd = stage_.data();
+  const double* k1 = k1_.data();
+  const double* k2 = k2_.data();
+  const double* k3 = k3_.data();
+  const double* k4 = k4_.data();
+  // Classical RK4 with the control input held over the step. The stage sums are plain loops:
+  // one pass each over the state, where Eigen's expression chain took several.
   Derivative(y, input, &k1_, &scratch_tdb_);
-  stage_ = y + (0.5 * h) * k1_;
+  for (Eigen::Index i = 0; i < size; ++i) sd[i] = yd[i] + half_h * k1[i];
   Derivative(stage_, input, &k2_, &scratch_tdb_);
-  stage_ = y + (0.5 * h) * k2_;
+  for (Eigen::Index i = 0; i < size; ++i) sd[i] = yd[i] + half_h * k2[i];
   Derivative(stage_, input, &k3_, &scratch_tdb_);
-  stage_ = y + h * k3_;
+  for (Eigen::Index i = 0; i < size; ++i) sd[i] = yd[i] + h * k3[i];
   Derivative(stage_, input, &k4_, &scratch_tdb_);
-  stage_ = k2_ + k3_;
-  stage_ *= 2.0;
-  stage_ += k1_;
-  stage_ += k4_;
-  y += (h / 6.0) * stage_;
+  // x - x is 0 for a finite x and NaN for an infinite or NaN one, so the sum flags any of them.
+  double not_finite = 0.0;
+  for (Eigen::Index i = 0; i < size; ++i) {
+    yd[i] += sixth_h * (((k2[i] + k3[i]) * 2.0 + k1[i]) + k4[i]);
+    not_finite += yd[i] - yd[i];
+  }
   ++state->step_index;
   state->power_on = input.motor_on;
 
-  if (!y.allFinite()) {
+  if (not_finite != 0.0) {
     ++state->faults.non_finite_state;
     return StepStatus::kNonFinite;
   }
@@ -81,7 +92,8 @@ StepStatus Simulator::Step(State* state, const ControlInput& input) noexcept {
   for (std::size_t i = 0; i < model_.tdbs.size(); ++i) {
     const TdbParams& p = model_.tdbs[i]->params();
     const Eigen::Vector2d xy = model_.tdb_shapes[i] * y.head(n);
-    if (xy.norm() > model_.params.simulation.max_excursion_over_clearance * p.clearance_m) {
+    const double bound = model_.params.simulation.max_excursion_over_clearance * p.clearance_m;
+    if (xy.squaredNorm() > bound * bound) {
       ++state->faults.excursion_beyond_bound;
       return StepStatus::kExcursionBound;
     }

@@ -1,4 +1,5 @@
 #pragma once
+#include <cmath>
 #include "rt_core/tdb_params.hpp"
 
 namespace ambdrop {
@@ -21,7 +22,13 @@ struct TdbForce {
   double tangential_force_N = 0.0;   ///< friction force on the inner race, along the spin sense
   double penetration_m = 0.0;        ///< journal excursion beyond the clearance (< 0: free)
   double tdb_spin_rad_s = 0.0;       ///< inner-race speed
-  double support_force_N = 0.0;      ///< force passed to the housing (the rig's load cells)
+  /// Force passed to the housing (the rig's load cells), by component. Its magnitude is taken
+  /// only when read: the integrator's stages never read it.
+  double support_x_N = 0.0;
+  double support_y_N = 0.0;
+  double support_force_N() const noexcept {
+    return std::sqrt(support_x_N * support_x_N + support_y_N * support_y_N);
+  }
 };
 
 /// A touchdown-bearing model: its own internal states (race speeds, race positions, ribbon

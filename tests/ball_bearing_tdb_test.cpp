@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <numbers>
 
 #include "malloc_guard.hpp"
@@ -164,8 +165,28 @@ TEST(BallBearingTdb, StateSizeAndStaticEquilibriumUnderGravity) {
     for (int i = 0; i < tdb.StateSize(); ++i) EXPECT_NEAR(rate[i], 0.0, 1e-6) << i;
     EXPECT_LT(s[S::kInnerY], support ? s[S::kOuterY] : 0.0);
     const double carried = support ? 0.2 : 0.08;  // the housing carries the races' weight
-    EXPECT_NEAR(f.support_force_N, carried * 9.81, 1e-6);
+    EXPECT_NEAR(f.support_force_N(), carried * 9.81, 1e-6);
     EXPECT_EQ(f.normal_force_N, 0.0);
+  }
+}
+
+// The state storage beyond StateSize() belongs to the next TDB or to nothing: the initial state
+// must neither read nor write it (it once read the absent outer-race slots, and runs after the
+// first in a process started from whatever the memory held).
+TEST(BallBearingTdb, InitialStateUsesOnlyItsOwnStates) {
+  for (const bool support : {false, true}) {
+    TdbParams p = Tdb(support);
+    p.ball_bearing.gravity_y_m_s2 = -9.81;
+    const BallBearingTdb tdb(p);
+    States clean{}, dirty{};
+    dirty.fill(std::numeric_limits<double>::quiet_NaN());
+    for (int i = tdb.StateSize(); i < static_cast<int>(dirty.size()); ++i) dirty[i] = 1e17;
+    tdb.InitialState(clean.data());
+    tdb.InitialState(dirty.data());
+    for (int i = 0; i < tdb.StateSize(); ++i)
+      EXPECT_EQ(clean[i], dirty[i]) << "support " << support << ", state " << i;
+    for (int i = tdb.StateSize(); i < static_cast<int>(dirty.size()); ++i)
+      EXPECT_EQ(dirty[i], 1e17) << i;
   }
 }
 
@@ -187,7 +208,7 @@ TEST(BallBearingTdb, JournalOnTheRaceByHand) {
   EXPECT_NEAR(rate[S::kInnerVy], -fn / 0.08, 1e-6);
   EXPECT_NEAR(rate[S::kInnerVx], 0.1 * fn / 0.08, 1e-6);
   EXPECT_NEAR(rate[S::kRaceSpin], 0.1 * fn * 0.03 / 6e-5, 1e-3);  // Ieq w' = Ft Ri
-  EXPECT_EQ(f.support_force_N, 0.0);                              // the balls are not loaded yet
+  EXPECT_EQ(f.support_force_N(), 0.0);                            // the balls are not loaded yet
   // The race spinning with the journal: static band, no friction.
   s[S::kRaceSpin] = 1885.0 * 0.0299 / 0.03;
   tdb.Evaluate({0.0, -1.1e-4, 0.0, 0.0, 1885.0}, s.data(), rate.data(), &f);
@@ -206,7 +227,7 @@ TEST(BallBearingTdb, SupportSpringAndDamperCarryTheOuterRace) {
   tdb.Evaluate({0.0, 0.0, 0.0, 0.0, 0.0}, s.data(), rate.data(), &f);
   const double support = 5e8 * -2e-6 + 27900.0 * -0.01;  // Ks y + Cs y', Fig. 16
   EXPECT_NEAR(rate[S::kOuterVy], -support / 0.12, 1e-6);
-  EXPECT_NEAR(f.support_force_N, -support, 1e-9);
+  EXPECT_NEAR(f.support_force_N(), -support, 1e-9);
   EXPECT_EQ(rate[S::kInnerVy], 0.0);
 }
 

@@ -157,7 +157,7 @@ TEST(CatcherBearing, StartsInStaticEquilibriumUnderGravity) {
       // vertical sag also pushes the intermediate race a little sideways).
       double weight = 4e-3 + (decks == 2 ? 0.026 : 0.0) +
                       (mount == CatcherMount::kMetalRubberRing ? 0.35 : 0.0);
-      EXPECT_NEAR(f.support_force_N, weight * 9.81, 0.01 * weight * 9.81);
+      EXPECT_NEAR(f.support_force_N(), weight * 9.81, 0.01 * weight * 9.81);
     }
   }
 }

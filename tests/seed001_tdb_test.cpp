@@ -121,7 +121,7 @@ TEST(FourDofCrossCoupled, OuterRaceFeelsMinusEq1AndTheHousingItsForce) {
   EXPECT_NEAR(rate[S::kOuterVx], -145.0 / 0.5, 1e-9);
   EXPECT_NEAR(rate[S::kOuterVy], 500.0 / 0.5, 1e-9);
   EXPECT_EQ(rate[S::kInnerVx], 0.0);
-  EXPECT_NEAR(f.support_force_N, std::hypot(145.0, 500.0), 1e-9);
+  EXPECT_NEAR(f.support_force_N(), std::hypot(145.0, 500.0), 1e-9);
 }
 
 TEST(FourDofCrossCoupled, HousingContactOnceTheRibbonClearanceIsUsed) {
@@ -135,11 +135,11 @@ TEST(FourDofCrossCoupled, HousingContactOnceTheRibbonClearanceIsUsed) {
   const double fh = 4e9 * 2e-6 * (1.0 + 1.5 * 0.3 * 0.01);  // Hunt-Crossley, seed 000 Eq. (10)
   const double ribbon = 5e6 * -0.148e-3 + 7e3 * -0.01;      // Eq. (1), no whirl
   EXPECT_NEAR(rate[S::kOuterVy], (fh - ribbon) / 0.5, 1e-6);
-  EXPECT_NEAR(f.support_force_N, std::abs(ribbon) + fh, 1e-6);
+  EXPECT_NEAR(f.support_force_N(), std::abs(ribbon) + fh, 1e-6);
   // 1 um inside the clearance: the ribbon alone.
   s[S::kOuterY] = s[S::kInnerY] = -0.145e-3;
   tdb.Evaluate({0.0, 0.0, 0.0, 0.0, 0.0}, s.data(), rate.data(), &f);
-  EXPECT_NEAR(f.support_force_N, 5e6 * 0.145e-3 + 70.0, 1e-6);
+  EXPECT_NEAR(f.support_force_N(), 5e6 * 0.145e-3 + 70.0, 1e-6);
 }
 
 // ---- Quadratic bearing law, Jarroux 2016 (seed 001) Sec. 2 ----
@@ -201,7 +201,7 @@ TEST(FourDofSeed001, RacesStartInStaticEquilibriumUnderGravity) {
     for (int i = 0; i < tdb.StateSize(); ++i) EXPECT_NEAR(rate[i], 0.0, 1e-9) << i;
     EXPECT_NEAR(s[S::kOuterY], -0.9 * 9.81 / 5e6, 1e-18);  // kcrd carries both races
     EXPECT_LT(s[S::kInnerY], s[S::kOuterY]);
-    EXPECT_NEAR(f.support_force_N, 0.9 * 9.81, 1e-9);
+    EXPECT_NEAR(f.support_force_N(), 0.9 * 9.81, 1e-9);
   }
   TdbParams bad = Tdb();
   bad.four_dof.cross_coupled.stiffness_N_per_m = 0.0;
@@ -290,7 +290,7 @@ TEST(Seed001Step, NoHeapAllocationThroughTheDrop) {
         if (sim.Step(&s, InputAt(model, s.step_index)) != StepStatus::kOk) break;
         sim.Observe(s, &obs);
         peak_normal = std::max(peak_normal, obs.tdb[0].normal_force_N);
-        peak_support = std::max(peak_support, obs.tdb[0].support_force_N);
+        peak_support = std::max(peak_support, obs.tdb[0].support_force_N());
       }
       allocations = guard.allocations();
     }

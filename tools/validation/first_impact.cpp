@@ -20,7 +20,7 @@ void ImpactTracker::Add(double time_s, double y_m, const TdbForce& f) {
       r_.top_m = y_m;
       [[fallthrough]];
     case kFirstContact:
-      r_.peak_support_N = std::max(r_.peak_support_N, f.support_force_N);
+      r_.peak_support_N = std::max(r_.peak_support_N, f.support_force_N());
       r_.peak_normal_N = std::max(r_.peak_normal_N, f.normal_force_N);
       if (y_m < r_.bottom_m) {
         r_.bottom_m = y_m;

@@ -15,16 +15,31 @@ std::string Describe(const WhirlClassification& w) {
 }
 
 // ambdrop, rig config, 0.95 s after the drop, mu 0.35 and ccrd cut 10x to 700 N s/m: both TDBs
-// rock (swinging at about a third of the spin frequency), as they do at mu 0.2..0.5 with ccrd
-// 0..7e3 N s/m; a 10x larger unbalance gives forward (often synchronous) whirl, backward whirl
-// only at one TDB in isolated cases. Our view of the cause: the inner race (seed 000's Ieq
-// 2.2e-3 kg m^2) spins up to the journal's surface speed within 0.06-0.12 s, after which the
-// contact no longer slips and friction stops feeding a backward whirl; seed 001 gives neither its
-// Ieq nor its drag torques, nor the unbalance, that decide this.
+// rock. Seed 001 gives no numbers for this: Sec. 3 only names the settled motions (RM, BWM) and
+// says friction moves spin energy into the BWM; the mu / ccrd pair is ours (seed 000's intro
+// lists high friction and low support damping among BWM causes). Eq. (1) (the cross-coupling
+// opposes the outer race's whirl), the friction on journal and race, the race spin (seed 000
+// Eq. (9)) and the classifier were checked: no sign error. What decides it (issue 5 study):
+//  - once the inner race rolls on the journal, only its resisting torque T (drag + M1 + Phi w,
+//    seed 000 Eq. (9)) pushes the journal backward, with T / Rir; a rolling BWM lasts if
+//    T / Rir * c >= the ribbon's loss per radian of whirl, (eta kcrd + ccrd |w|) r_or^2 (seed 001
+//    Eq. (1), outer race on its 0.15 mm clearance): T >= ~10 N m at ccrd 700 N s/m, ~31 N m at
+//    7e3 (w ~ 600 rad/s, c 0.25 mm, Rir 60.25 mm);
+//  - with seed 000's Ieq 2.2e-3 kg m^2 (its measured spin-up, 0.11-0.13 s, Table 3) no drag
+//    0..3 N m, f1 0.001..0.002, eta 0.03..0.3, ribbon clearance 0.15 or 0.3 mm, unbalance G2.5..
+//    G16 at 4 phases whirls backward at both TDBs, bar 3 of 144 slow drifts (-0.02..-0.11 x spin,
+//    G16 only, phase-dependent, 2 change kind at a 1 us step); a sustained BWM (-0.82 x spin,
+//    same at 1 us) needs a 10 N m drag plus a 0.1 mm TDB offset, which delays the base spin-up
+//    to 0.8 s; Ieq 1e-2 gives only the tail of a decaying BWM, with a 0.55 s spin-up. Both leave
+//    seed 000's rig (dry TDBs: M1 ~ 0.14 N m at rest), so the config keeps it;
+//  - at 5 us the arctan friction (vref 200 s/m) on the 0.4 kg inner race is past RK4's limit for
+//    normal loads above ~5 kN (mu 0.35): its sign flips between RK stages (t = 0.25 s, Ieq 1e-2:
+//    +5.4 kN at the step, -5.7 kN at the half step); the rig's, the 10 N m and the Ieq 1e-2
+//    cases classify alike at 1 us.
 constexpr const char* kWhirlKnownFailure =
-    "issue 5: with the assumed rig (seed 000's TDB inertia, G2.5 unbalance) the raised friction "
-    "and cut ribbon damping still rock; the inner race spins up within ~0.1 s and friction stops "
-    "driving the whirl";
+    "issue 5: with seed 000's dry TDBs (Ieq 2.2e-3 kg m^2, spin-up 0.12 s) the raised friction and "
+    "cut ribbon damping still rock; a rolling backward whirl needs a race drag of ~10 N m, which "
+    "would delay the spin-up to ~0.8 s";
 
 }  // namespace
 

@@ -15,7 +15,7 @@ void TdbPeakTracker::Add(const Observation& o) {
     TdbPeaks& p = tdbs_[i];
     const TdbForce& f = o.tdb[i];
     p.normal_N = std::max(p.normal_N, f.normal_force_N);
-    p.support_N = std::max(p.support_N, f.support_force_N);
+    p.support_N = std::max(p.support_N, f.support_force_N());
     if (o.time_s >= late_from_s_) p.late_normal_N = std::max(p.late_normal_N, f.normal_force_N);
     p.journal_radius_m = std::max(p.journal_radius_m,
                                   std::hypot(o.tdb_journal_xy_m[i][0], o.tdb_journal_xy_m[i][1]));
