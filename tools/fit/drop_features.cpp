@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "tools/fit/noise_floor.hpp"
 #include "tools/whirl_classifier.hpp"
 
 namespace ambdrop {
@@ -197,7 +198,10 @@ std::vector<Signature> ResidualSignatures(const ModelParams& params, const Measu
       lo = std::min(lo, meas[j]);
       hi = std::max(hi, meas[j]);
     }
-    const double range = hi > lo ? hi - lo : 1.0;
+    // A channel that carries only its noise (the coil currents of equivalent-law AMBs) has no
+    // signature to read, only noise over noise; the cost leaves it out by the same rule.
+    if (!(hi - lo > 10.0 * NoiseSigma(meas, first, meas.size()))) continue;
+    const double range = hi - lo;
     const auto add = [&](const char* kind, double value, double relative,
                          std::vector<std::string> points_to) {
       if (std::abs(relative) >= 0.01) {

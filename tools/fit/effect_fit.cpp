@@ -97,7 +97,7 @@ ModelParams WithEffects(const ModelParams& declared, const std::vector<const Eff
 }
 
 EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& effects,
-                     int max_runs_per_start) {
+                     int max_runs_per_start, const RecordCost* screen) {
   std::vector<Flat> flat;
   std::size_t starts = 1;
   for (std::size_t e = 0; e < effects.size(); ++e) {
@@ -111,8 +111,9 @@ EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& e
   fit.sse = std::numeric_limits<double>::infinity();
   Eigen::VectorXd best_z;
   // One Levenberg-Marquardt search from z; keeps its best point if it beats the best so far.
+  const RecordCost& search_cost = screen != nullptr ? *screen : cost;
   const auto search_from = [&](Eigen::VectorXd z) {
-    Problem problem(cost, effects, flat, max_runs_per_start);
+    Problem problem(search_cost, effects, flat, max_runs_per_start);
     Eigen::LevenbergMarquardt<Problem> lm(problem);
     lm.setXtol(1e-4);
     lm.setFtol(1e-4);
@@ -150,6 +151,24 @@ EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& e
         if (!search_from(z)) break;
       }
     }
+  }
+
+  if (screen != nullptr) {
+    // The screen's optimum refined on the whole cost, which is what the candidates are judged
+    // by; the start point itself is the first run, so the refinement never ends worse.
+    Problem problem(cost, effects, flat, max_runs_per_start);
+    Eigen::LevenbergMarquardt<Problem> lm(problem);
+    lm.setXtol(1e-4);
+    lm.setFtol(1e-4);
+    Eigen::VectorXd z = best_z;
+    lm.minimize(z);
+    fit.evaluations += problem.runs;
+    if (problem.best_z.size() == 0) {
+      fit.sse = std::numeric_limits<double>::infinity();
+      return fit;
+    }
+    fit.sse = problem.best_sse;
+    best_z = problem.best_z;
   }
 
   // The Jacobian at the optimum, in the parameters' own units, for their uncertainty.

@@ -33,8 +33,11 @@ ModelParams WithEffects(const ModelParams& declared, const std::vector<const Eff
                         const std::vector<std::vector<double>>& values);
 
 /// Fits the effects' parameters together. `max_runs_per_start` bounds the model runs of each
-/// start (the Jacobian costs one run per parameter).
+/// start (the Jacobian costs one run per parameter). With `screen` (the same record's early,
+/// deterministic part: CostScope::kEarly), the starts are searched on it and the best is then
+/// refined on `cost` itself: where the drop turns chaotic after its impacts, `cost` is too
+/// rough for a gradient from afar, while the early part leads to the right basin.
 EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& effects,
-                     int max_runs_per_start = 40);
+                     int max_runs_per_start = 40, const RecordCost* screen = nullptr);
 
 }  // namespace ambdrop

@@ -46,6 +46,11 @@ struct Selection {
   /// How much the declared model's own prediction moves when its step is halved: the drop's
   /// sensitivity (chaos after impacts, the start state) that no effect can fit away.
   double model_floor = 0.0;
+  /// The same for the model with the chosen effects (0 with none), or, if larger, how far its
+  /// prediction moves when a fitted parameter moves by a thousandth of its range: an effect can
+  /// make the drop chaotic where the declared model was not. The verdict on what is left takes
+  /// the larger of this and model_floor.
+  double model_floor_after = 0.0;
   std::vector<CandidateScore> candidates;  ///< singles in library order, then pairs
   std::vector<std::string> chosen;         ///< effect names
   EffectFit chosen_fit;                    ///< their parameters

@@ -73,6 +73,7 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   json.Key("reason").String(s.reason);
   json.Key("noise_floor").Number(s.noise_floor);
   json.Key("model_floor").Number(s.model_floor);
+  json.Key("model_floor_after").Number(s.model_floor_after);
   json.Key("windows").BeginObject(true);
   json.Key("start_s").Number(o.before.windows.start_s);
   json.Key("trigger_s").Number(o.before.windows.trigger_s);

@@ -66,8 +66,8 @@ bool Smooth(MeasuredQuantity q) {
 
 RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& measurement,
                        const MeasuredRecord& record, const RecordRunOptions& run,
-                       std::size_t max_samples_per_channel)
-    : declared_(declared), measurement_(measurement), record_(record), run_(run) {
+                       std::size_t max_samples_per_channel, CostScope scope)
+    : declared_(declared), measurement_(measurement), record_(record), run_(run), scope_(scope) {
   trigger_s_ = RecordTriggerTime(measurement, record);
   const bool closed = ClosedLoop(declared, run);
   const double t0 = record.time_s.front();
@@ -75,6 +75,8 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
   compare_from_s_ = closed ? t0 : std::max(t0, trigger_s_ - run.lead_s);
   early_end_s_ = std::min(t_end, EarlyEnd(measurement, record, trigger_s_, declared));
   settled_from_s_ = t_end - std::min((t_end - trigger_s_) / 3.0, 0.1);
+  const bool early_only = scope == CostScope::kEarly;
+  if (early_only) run_.end_s = std::min(run_.end_s, early_end_s_);
   const double spin = declared.simulation.spin_speed_rad_s;
   const std::size_t rows = record.time_s.size();
   const auto first_row_at = [&](double t) {
@@ -94,7 +96,7 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
     // Sample-by-sample rows; currents before the trigger are inputs (open loop) or compared
     // by their levitated mean and harmonics (closed loop).
     const double from = current ? trigger_s_ : compare_from_s_;
-    const double to = Smooth(ch.quantity) ? t_end + 1.0 : early_end_s_;
+    const double to = Smooth(ch.quantity) && !early_only ? t_end + 1.0 : early_end_s_;
     std::vector<std::size_t> raw;
     for (std::size_t j = 0; j < rows; ++j) {
       if (record.time_s[j] >= from && record.time_s[j] < to) raw.push_back(j);
@@ -113,7 +115,24 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
         blocks.push_back(std::move(b));
       }
     }
-    if (!Smooth(ch.quantity) && settled_row < rows && settled_from_s_ > to) {
+    if (early_only && ch.quantity == MeasuredQuantity::kTdbNormalForce) {
+      // Impact forces are spikes a few samples wide: sample by sample, a spike a sample early
+      // is off by its whole height, and the cost turns from a bowl into a cusp that gradients
+      // cannot descend. Their impulse over short windows moves smoothly with the timing.
+      std::vector<std::size_t> window;
+      const std::size_t per_block = std::max<std::size_t>(1, raw.size() / 8);
+      for (std::size_t i = 0; i < raw.size(); ++i) {
+        window.push_back(raw[i]);
+        if (window.size() == per_block || i + 1 == raw.size()) {
+          const double n = static_cast<double>(window.size());
+          blocks.push_back({c, window.front(), std::vector<double>(window.size(), 1.0 / n), 0.0,
+                            0.0, 0.0});
+          window.clear();
+        }
+      }
+      raw.clear();
+    }
+    if (!early_only && !Smooth(ch.quantity) && settled_row < rows && settled_from_s_ > to) {
       const std::size_t n = rows - settled_row;
       blocks.push_back(
           {c, settled_row, std::vector<double>(n, 1.0 / static_cast<double>(n)), 0.0, 0.0, 0.0});

@@ -24,13 +24,24 @@
 
 namespace ambdrop {
 
+/// What a cost compares.
+enum class CostScope {
+  kWhole,  ///< everything above
+  /// Only up to the end of the first impact (RecordCost::early_end_s), every channel sample by
+  /// sample there (levitated currents by their blocks), and the run stops there. After the
+  /// first impacts a drop can be so chaotic that a hair's change of a parameter moves the whole
+  /// cost (a flexible rotor whirling on ball-bearing TDBs): this part stays smooth in the
+  /// parameters, so the fit searches on it first.
+  kEarly,
+};
+
 class RecordCost {
  public:
   /// `max_samples_per_channel` thins the compared rows evenly (the cost of the linear algebra,
   /// not of the simulation, grows with it).
   RecordCost(const ModelParams& declared, const MeasurementParams& measurement,
              const MeasuredRecord& record, const RecordRunOptions& run,
-             std::size_t max_samples_per_channel = 3000);
+             std::size_t max_samples_per_channel = 3000, CostScope scope = CostScope::kWhole);
 
   /// The residual vector of `params` (a copy of the declared ones with effects applied). A run
   /// that stops early scores every sample it did not reach as a full range off.
@@ -55,6 +66,7 @@ class RecordCost {
   const MeasuredRecord& record() const { return record_; }
   const RecordRunOptions& run_options() const { return run_; }
   double trigger_time_s() const { return trigger_s_; }
+  CostScope scope() const { return scope_; }
 
  private:
   struct Sample {
@@ -76,6 +88,7 @@ class RecordCost {
   const MeasurementParams& measurement_;
   const MeasuredRecord& record_;
   RecordRunOptions run_;
+  CostScope scope_ = CostScope::kWhole;
   double trigger_s_ = 0.0;
   double compare_from_s_ = 0.0;
   double early_end_s_ = 0.0;

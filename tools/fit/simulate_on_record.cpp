@@ -131,7 +131,8 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
   ModelParams params = declared;
   if (options.step_s > 0) params.simulation.step_s = options.step_s;
   const double dt = params.simulation.step_s;
-  params.simulation.duration_s = t_end - t_start + dt;
+  const double run_end = std::min(t_end, std::max(options.end_s, out.trigger_time_s));
+  params.simulation.duration_s = run_end - t_start + dt;
   params.trigger.enabled = true;
   params.trigger.time_s = out.trigger_time_s - t_start;
   params.trigger.restore_time_s = -1.0;
@@ -225,10 +226,13 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
   }
 
   // Rows of the record to predict, and the step each falls on.
-  const std::size_t total_rows = r.time_s.size();
+  const std::size_t record_rows = r.time_s.size();
+  // Rows past run_end are not simulated; they stay NaN, as after a run that stopped.
+  const std::size_t total_rows = static_cast<std::size_t>(
+      std::upper_bound(r.time_s.begin(), r.time_s.end(), run_end + 0.5 * dt) - r.time_s.begin());
   out.first_row = static_cast<std::size_t>(
       std::lower_bound(r.time_s.begin(), r.time_s.end(), t_start - 0.5 * dt) - r.time_s.begin());
-  out.values.assign(m.channels.size(), std::vector<double>(total_rows, kNaN));
+  out.values.assign(m.channels.size(), std::vector<double>(record_rows, kNaN));
   SensorEmulator sensors(model.params.sensors, r.SampleInterval());
   PowerState power(model);
   const PowerEvent failure = ScheduledFailure(model);

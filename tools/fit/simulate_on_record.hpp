@@ -3,6 +3,7 @@
 // record's time base. The run starts a short lead before the trigger from the state the
 // displacement channels show then: AMB currents drive an open-loop, unstable plant, so a run
 // started long before the trigger would drift away from the measurement on its own.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,9 @@ struct RecordRunOptions {
   double lead_s = 2e-3;  ///< open loop: simulated time before the trigger
   /// Model step; 0: the config's. The record's samples fall on the nearest step.
   double step_s = 0.0;
+  /// Record time after which no row is wanted: the run stops there (rows after it stay NaN).
+  /// A cost that compares only the drop's start need not pay for its whole settling.
+  double end_s = std::numeric_limits<double>::infinity();
 };
 
 /// What the model says each measured channel should read.
