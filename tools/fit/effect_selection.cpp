@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <optional>
 #include <cmath>
+#include <optional>
 #include <thread>
 
 namespace ambdrop {
@@ -64,18 +64,22 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
         SimulateOnRecord(cost.declared(), cost.measurement(), cost.record(), half);
     s.model_floor = OverallRms(cost, (cost.Residual(fine) - residual_before).squaredNorm());
   }
+  s.rms_before = OverallRms(cost, sse_before);
+  s.bic_before = Bic(sse_before, cost.size(), 0);
+  s.rms_after = s.rms_before;
+  s.limit = AgreementLimit(s, rules);
+  s.limit_after = s.limit;
+  const bool at_floor = s.rms_before <= s.limit;
   // The early, deterministic part to search on; without anything to compare there (a record
   // that ends at its first impact compares it all anyway), the whole cost is searched.
   std::optional<RecordCost> screen;
-  if (cost.scope() == CostScope::kWhole && cost.early_end_s() < cost.record().time_s.back()) {
+  if (!at_floor && cost.scope() == CostScope::kWhole &&
+      cost.early_end_s() < cost.record().time_s.back()) {
     screen.emplace(cost.declared(), cost.measurement(), cost.record(), cost.run_options(), 3000,
                    CostScope::kEarly);
     if (screen->size() == 0) screen.reset();
   }
   const RecordCost* search = screen ? &*screen : nullptr;
-  s.rms_before = OverallRms(cost, sse_before);
-  s.bic_before = Bic(sse_before, cost.size(), 0);
-  s.rms_after = s.rms_before;
 
   // Singles.
   std::vector<CandidateScore> singles(library.size());
@@ -86,7 +90,10 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
     c.family = e.family;
     c.description = e.description;
     c.decidable = Decidable(e, cost.measurement());
-    if (!c.decidable) return;
+    // At the floor no candidate could be chosen: its fit would only cost runs (minutes for
+    // the full library on a flexible rotor).
+    if (!c.decidable || at_floor) return;
+    c.tried = true;
     c.fit = FitEffects(cost, {&e}, rules.max_runs_per_start, search);
     c.rms_after = OverallRms(cost, c.fit.sse);
     c.bic = Bic(c.fit.sse, cost.size(), Parameters(c.fit));
@@ -97,14 +104,12 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
   };
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < singles.size(); ++i) {
-    if (singles[i].decidable && std::isfinite(singles[i].fit.sse)) order.push_back(i);
+    if (singles[i].tried && std::isfinite(singles[i].fit.sse)) order.push_back(i);
   }
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return singles[a].bic < singles[b].bic; });
   s.candidates = singles;
 
-  const double limit = AgreementLimit(s, rules);
-  const bool at_floor = s.rms_before <= limit;
   // The limit with a fitted model's own sensitivity: an effect can make the drop chaotic where
   // the declared model was not (a misaligned TDB the rotor now bounces in), and then no
   // parameter value reproduces the bouncing closer than halving the step moves it.
@@ -141,7 +146,11 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
     s.model_floor_after = OverallRms(cost, moved);
     Selection widened = s;
     widened.model_floor = std::max(s.model_floor, s.model_floor_after);
-    return AgreementLimit(widened, rules);
+    const double cap = std::max(s.limit, s.rms_before / rules.explained_cut);
+    const double wide = AgreementLimit(widened, rules);
+    s.limit_after_capped = wide > cap;
+    s.limit_after = std::min(wide, cap);
+    return s.limit_after;
   };
   if (!order.empty() && !at_floor) {
     CandidateScore& best = s.candidates[order.front()];
@@ -186,20 +195,25 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
     }
   }
 
-  const double limit_after = s.chosen.empty() ? limit : floor_limit(s.chosen_fit);
+  const double limit_after = s.chosen.empty() ? s.limit : floor_limit(s.chosen_fit);
+  if (s.chosen.empty()) {
+    s.model_floor_after = 0.0;
+    s.limit_after = s.limit;
+    s.limit_after_capped = false;
+  }
 
   if (at_floor) {
     s.verdict = "no_effect_needed";
     s.reason = fmt::format(
         "the declared model is already within {:.3g} of the record (relative RMS), inside the "
         "agreement limit {:.3g}",
-        s.rms_before, limit);
+        s.rms_before, s.limit);
   } else if (s.chosen.empty()) {
     s.verdict = "unexplained";
     s.reason = fmt::format(
         "the residual ({:.3g}, agreement limit {:.3g}) is not cut by {:.0f} % or more by any "
         "effect of the library",
-        s.rms_before, limit, 100.0 * (1.0 - 1.0 / rules.min_cut));
+        s.rms_before, s.limit, 100.0 * (1.0 - 1.0 / rules.min_cut));
   } else if (s.rms_after <= limit_after) {
     s.verdict = "explained";
     s.reason = fmt::format(

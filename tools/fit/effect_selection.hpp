@@ -18,6 +18,12 @@ struct SelectionRules {
   /// residual is explained: the floor is itself estimated from the record.
   double explained_over_floor = 1.25;
   double model_floor_factor = 2.0;  ///< on the model floor
+  /// The limit a fitted model's own sensitivity widens (Selection::model_floor_after) stays
+  /// within max(the declared limit, rms_before / explained_cut). A fitted effect can make the
+  /// drop chaotic and so widen its own limit towards the residual it leaves: without the cap, a
+  /// near miss would call itself explained. What an effect explains must be most of the error:
+  /// at least the 3x cut the tests ask of an effect that is in the record.
+  double explained_cut = 3.0;
   /// An overall relative RMS (RecordCost) within which model and record agree anyway: noise,
   /// quantisation and a finer step in the record leave about 3e-4 with the true model
   /// (clean records of the PID rig at 5 and 2.5 us steps); six times that.
@@ -32,6 +38,9 @@ struct CandidateScore {
   std::string family;
   std::string description;
   bool decidable = true;  ///< false: no channel of the record can reveal it (not fitted)
+  /// Fitted. false when undecidable, or when the declared model already agrees with the record
+  /// within the agreement limit (fitting then could only cost runs: no effect would be chosen).
+  bool tried = false;
   EffectFit fit;
   double rms_after = 0.0;  ///< overall relative RMS with it
   double bic = 0.0;
@@ -49,8 +58,13 @@ struct Selection {
   /// The same for the model with the chosen effects (0 with none), or, if larger, how far its
   /// prediction moves when a fitted parameter moves by a thousandth of its range: an effect can
   /// make the drop chaotic where the declared model was not. The verdict on what is left takes
-  /// the larger of this and model_floor.
+  /// the larger of this and model_floor, within SelectionRules::explained_cut's cap.
   double model_floor_after = 0.0;
+  double limit = 0.0;  ///< the agreement limit of the declared model (AgreementLimit)
+  /// The limit the verdict on the chosen effects used: the one widened by model_floor_after,
+  /// capped by SelectionRules::explained_cut (= limit with nothing chosen).
+  double limit_after = 0.0;
+  bool limit_after_capped = false;  ///< the cap, not model_floor_after, set limit_after
   std::vector<CandidateScore> candidates;  ///< singles in library order, then pairs
   std::vector<std::string> chosen;         ///< effect names
   EffectFit chosen_fit;                    ///< their parameters
