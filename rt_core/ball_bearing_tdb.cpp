@@ -76,24 +76,10 @@ void BallBearingTdb::Evaluate(const JournalMotion& j, const double* s, double* r
     ovx = s[kOuterVx];
     ovy = s[kOuterVy];
   }
-  double jx = j.x_m;
-  double jy = j.y_m;
-  if (p.misalignment.enabled) {
-    jx -= p.misalignment.x_m;
-    jy -= p.misalignment.y_m;
-  }
-
   // Journal / inner race deflection, Chen 2019 (seed 002) Eq. (6); normal n from the race
   // centre to the journal (the force on the rotor is along -n, Eq. (7)-(8)).
-  const double dx = jx - ix;
-  const double dy = jy - iy;
-  const double distance = std::sqrt(dx * dx + dy * dy);
-  double nx = 1.0, ny = 0.0;
-  if (distance > 0.0) {
-    nx = dx / distance;
-    ny = dy / distance;
-  }
-  const double deflection = distance - p.clearance_m;
+  const ContactGeometry g = JournalGeometry(p, j, {ix, iy, ivx, ivy});
+  const double deflection = g.radius_m - p.clearance_m;
   *out = TdbForce{};
   out->penetration_m = deflection;
   out->tdb_spin_rad_s = race_speed;
@@ -103,17 +89,10 @@ void BallBearingTdb::Evaluate(const JournalMotion& j, const double* s, double* r
   if (deflection > 0.0) {
     // Chen 2019 (seed 002), Eq. (5)
     normal = LineContactForce(b.line_contact, p.clearance_m, deflection);
-    // Surface speeds, Chen 2019 (seed 002) Eq. (9)-(10), vi = omega_i Ri, vs = omega_s Rs, plus
-    // the journal centre's speed relative to the race along the tangent t = (-ny, nx).
-    const double relative_whirl = -(j.vx_m_s - ivx) * ny + (j.vy_m_s - ivy) * nx;
-    const double inner_race_radius = p.journal_radius_m + p.clearance_m;
-    const double slip =
-        relative_whirl + j.spin_rad_s * p.journal_radius_m - race_speed * inner_race_radius;
     // Chen 2019 (seed 002), Eq. (11)-(12): on the race along the slip, on the rotor against it.
-    friction = SlipFrictionForce(b.friction, normal, slip);
+    friction = SlipFrictionForce(b.friction, normal, SurfaceSlip(p, j, g, race_speed));
     // Chen 2019 (seed 002), Eq. (2)-(3), (8)
-    on_rotor_x = -normal * nx + friction * ny;
-    on_rotor_y = -normal * ny - friction * nx;
+    ForceOnRotor(g, normal, -friction, &on_rotor_x, &on_rotor_y);
     out->torque_on_rotor_N_m = -friction * p.journal_radius_m;
   }
   out->fx_N = on_rotor_x;

@@ -104,27 +104,12 @@ void CatcherBearingTdb::Evaluate(const JournalMotion& j, const double* s, double
   const TdbParams& p = params_;
   const CatcherBearingParams& c = p.catcher;
   const double vref = p.friction.regularisation_s_per_m;
-  double jx = j.x_m;
-  double jy = j.y_m;
-  if (p.misalignment.enabled) {
-    jx -= p.misalignment.x_m;
-    jy -= p.misalignment.y_m;
-  }
   const double wi = s[kSpin];
   const double ix = s[kX], iy = s[kY], ivx = s[kVx], ivy = s[kVy];
 
   // Journal / inner race: penetration beyond the clearance, normal n from the race centre.
-  const double dx = jx - ix;
-  const double dy = jy - iy;
-  const double distance = std::sqrt(dx * dx + dy * dy);
-  double nx = 1.0, ny = 0.0;
-  if (distance > 0.0) {
-    nx = dx / distance;
-    ny = dy / distance;
-  }
-  const double rvx = j.vx_m_s - ivx;
-  const double rvy = j.vy_m_s - ivy;
-  const double penetration = distance - p.clearance_m;
+  const ContactGeometry g = JournalGeometry(p, j, {ix, iy, ivx, ivy});
+  const double penetration = g.radius_m - p.clearance_m;
   *out = TdbForce{};
   out->penetration_m = penetration;
   out->tdb_spin_rad_s = wi;
@@ -134,15 +119,11 @@ void CatcherBearingTdb::Evaluate(const JournalMotion& j, const double* s, double
   const double inner_race_radius = p.journal_radius_m + p.clearance_m;  // Rb
   if (penetration > 0.0) {
     // Seed 003, Eq. (1)
-    normal = ImpactForce(c.impact, penetration, rvx * nx + rvy * ny);
-    // Slip of the journal surface over the inner-race surface, Jarroux 2019 Eq. (11).
-    const double relative_whirl = -rvx * ny + rvy * nx;
-    const double slip = relative_whirl + j.spin_rad_s * p.journal_radius_m - wi * inner_race_radius;
-    friction = FrictionForce(p.friction, normal, slip);
-    const double tangential_on_rotor =
-        -friction - p.friction.whirl_damping_N_s_per_m * relative_whirl;
-    on_rotor_x = -normal * nx - tangential_on_rotor * ny;
-    on_rotor_y = -normal * ny + tangential_on_rotor * nx;
+    normal = ImpactForce(c.impact, penetration, g.radial_speed_m_s);
+    // Jarroux 2019, Eq. (11)
+    friction = FrictionForce(p.friction, normal, SurfaceSlip(p, j, g, wi));
+    ForceOnRotor(g, normal, -friction - p.friction.whirl_damping_N_s_per_m * g.whirl_speed_m_s,
+                 &on_rotor_x, &on_rotor_y);
     out->torque_on_rotor_N_m = -friction * p.journal_radius_m;
   }
   out->fx_N = on_rotor_x;

@@ -32,16 +32,10 @@ void ContactLawTdb::Evaluate(const JournalMotion& j, const double* state, double
       normal = c.ribbon_stiffness_N_per_m * urs + c.ribbon_damping_N_s_per_m * g.radial_speed_m_s;
     }
     normal = std::max(normal, 0.0);
-    // Slip of the journal surface over the inner race, Jarroux 2019 Eq. (11).
-    const double inner_race_radius = p.journal_radius_m + p.clearance_m;
-    const double slip =
-        g.whirl_speed_m_s + j.spin_rad_s * p.journal_radius_m - race_speed * inner_race_radius;
-    friction = FrictionForce(p.friction, normal, slip);
-    const double tangential_on_rotor =
-        -friction - p.friction.whirl_damping_N_s_per_m * g.whirl_speed_m_s;
-    // Normal pushes the journal back towards the centre; tangent t = (-ny, nx).
-    out->fx_N = -normal * g.nx - tangential_on_rotor * g.ny;
-    out->fy_N = -normal * g.ny + tangential_on_rotor * g.nx;
+    // Jarroux 2019 Eq. (11)
+    friction = FrictionForce(p.friction, normal, SurfaceSlip(p, j, g, race_speed));
+    ForceOnRotor(g, normal, -friction - p.friction.whirl_damping_N_s_per_m * g.whirl_speed_m_s,
+                 &out->fx_N, &out->fy_N);
     out->torque_on_rotor_N_m = -friction * p.journal_radius_m;
     // Without race masses the housing takes the whole contact force.
     out->support_x_N = out->fx_N;

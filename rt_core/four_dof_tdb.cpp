@@ -63,26 +63,9 @@ void FourDofTdb::Evaluate(const JournalMotion& j, const double* s, double* rate,
   const double race_speed = s[kRaceSpin];
   const double ix = s[kInnerX], iy = s[kInnerY], ivx = s[kInnerVx], ivy = s[kInnerVy];
   const double ox = s[kOuterX], oy = s[kOuterY], ovx = s[kOuterVx], ovy = s[kOuterVy];
-  double jx = j.x_m;
-  double jy = j.y_m;
-  if (p.misalignment.enabled) {
-    jx -= p.misalignment.x_m;
-    jy -= p.misalignment.y_m;
-  }
-
   // Journal / inner race: penetration beyond the clearance, normal n from the race centre.
-  const double dx = jx - ix;
-  const double dy = jy - iy;
-  const double distance = std::sqrt(dx * dx + dy * dy);
-  double nx = 1.0, ny = 0.0;
-  if (distance > 0.0) {
-    const double inverse_distance = 1.0 / distance;
-    nx = dx * inverse_distance;
-    ny = dy * inverse_distance;
-  }
-  const double rvx = j.vx_m_s - ivx;
-  const double rvy = j.vy_m_s - ivy;
-  const double urs = distance - p.clearance_m;
+  const ContactGeometry g = JournalGeometry(p, j, {ix, iy, ivx, ivy});
+  const double urs = g.radius_m - p.clearance_m;
   *out = TdbForce{};
   out->penetration_m = urs;
   out->tdb_spin_rad_s = race_speed;
@@ -91,17 +74,11 @@ void FourDofTdb::Evaluate(const JournalMotion& j, const double* s, double* rate,
   double on_rotor_x = 0.0, on_rotor_y = 0.0;
   if (urs > 0.0) {
     // Jarroux 2019, Eq. (10)
-    normal = HuntCrossleyForce(f.inner_contact, urs, rvx * nx + rvy * ny);
-    // Slip of the journal surface over the inner-race surface, Jarroux 2019 Eq. (11).
-    const double relative_whirl = -rvx * ny + rvy * nx;
-    const double inner_race_radius = p.journal_radius_m + p.clearance_m;
-    const double slip =
-        relative_whirl + j.spin_rad_s * p.journal_radius_m - race_speed * inner_race_radius;
-    friction = FrictionForce(p.friction, normal, slip);
-    const double tangential_on_rotor =
-        -friction - p.friction.whirl_damping_N_s_per_m * relative_whirl;
-    on_rotor_x = -normal * nx - tangential_on_rotor * ny;
-    on_rotor_y = -normal * ny + tangential_on_rotor * nx;
+    normal = HuntCrossleyForce(f.inner_contact, urs, g.radial_speed_m_s);
+    // Jarroux 2019, Eq. (11)
+    friction = FrictionForce(p.friction, normal, SurfaceSlip(p, j, g, race_speed));
+    ForceOnRotor(g, normal, -friction - p.friction.whirl_damping_N_s_per_m * g.whirl_speed_m_s,
+                 &on_rotor_x, &on_rotor_y);
     out->torque_on_rotor_N_m = -friction * p.journal_radius_m;
   }
   out->fx_N = on_rotor_x;

@@ -8,31 +8,60 @@
 
 namespace ambdrop {
 
-/// Journal position relative to the TDB centre (which misalignment moves off the magnetic
-/// centre), split into radial and tangential parts.
-struct ContactGeometry {
-  double nx = 1.0, ny = 0.0;  ///< unit normal from the TDB centre towards the journal
-  double radius_m = 0.0;      ///< journal centre distance from the TDB centre
-  double radial_speed_m_s = 0.0;
-  double whirl_speed_m_s = 0.0;  ///< tangential speed of the journal centre, along +spin
+/// A race's lateral motion relative to the TDB centre: position (m) and velocity (m/s).
+struct RaceMotion {
+  double x_m = 0.0, y_m = 0.0;
+  double vx_m_s = 0.0, vy_m_s = 0.0;
 };
 
-inline ContactGeometry JournalGeometry(const TdbParams& p, const JournalMotion& j) noexcept {
+/// The journal relative to the race it meets (the TDB centre, which misalignment moves off the
+/// magnetic centre, for models without race masses), split into radial and tangential parts.
+struct ContactGeometry {
+  double nx = 1.0, ny = 0.0;      ///< unit normal from the race centre towards the journal
+  double radius_m = 0.0;          ///< journal centre distance from the race centre
+  double radial_speed_m_s = 0.0;  ///< relative speed along n (> 0 approaching the race)
+  double whirl_speed_m_s = 0.0;   ///< relative speed along t = (-ny, nx), the +spin sense
+};
+
+inline ContactGeometry JournalGeometry(const TdbParams& p, const JournalMotion& j,
+                                       const RaceMotion& race = {}) noexcept {
   ContactGeometry g;
-  double dx = j.x_m;
-  double dy = j.y_m;
+  double jx = j.x_m;
+  double jy = j.y_m;
   if (p.misalignment.enabled) {
-    dx -= p.misalignment.x_m;
-    dy -= p.misalignment.y_m;
+    jx -= p.misalignment.x_m;
+    jy -= p.misalignment.y_m;
   }
+  const double dx = jx - race.x_m;
+  const double dy = jy - race.y_m;
   g.radius_m = std::sqrt(dx * dx + dy * dy);
   if (g.radius_m > 0.0) {
-    g.nx = dx / g.radius_m;
-    g.ny = dy / g.radius_m;
+    const double inverse_radius = 1.0 / g.radius_m;
+    g.nx = dx * inverse_radius;
+    g.ny = dy * inverse_radius;
   }
-  g.radial_speed_m_s = j.vx_m_s * g.nx + j.vy_m_s * g.ny;
-  g.whirl_speed_m_s = -j.vx_m_s * g.ny + j.vy_m_s * g.nx;
+  const double rvx = j.vx_m_s - race.vx_m_s;
+  const double rvy = j.vy_m_s - race.vy_m_s;
+  g.radial_speed_m_s = rvx * g.nx + rvy * g.ny;
+  g.whirl_speed_m_s = -rvx * g.ny + rvy * g.nx;
   return g;
+}
+
+/// Slip of the journal surface over the inner-race surface (m/s, along +spin): Jarroux 2019
+/// Eq. (11), Chen 2019 (seed 002) Eq. (9)-(10): the relative whirl plus the surface speeds.
+inline double SurfaceSlip(const TdbParams& p, const JournalMotion& j, const ContactGeometry& g,
+                          double race_speed_rad_s) noexcept {
+  const double inner_race_radius_m = p.journal_radius_m + p.clearance_m;
+  return g.whirl_speed_m_s + j.spin_rad_s * p.journal_radius_m -
+         race_speed_rad_s * inner_race_radius_m;
+}
+
+/// Contact force on the rotor: the normal force pushes the journal back along -n, the
+/// tangential one acts along t = (-ny, nx).
+inline void ForceOnRotor(const ContactGeometry& g, double normal_N, double tangential_N,
+                         double* fx_N, double* fy_N) noexcept {
+  *fx_N = -normal_N * g.nx - tangential_N * g.ny;
+  *fy_N = -normal_N * g.ny + tangential_N * g.nx;
 }
 
 /// Friction force on the race along +spin for a slip speed (journal surface minus race surface).
