@@ -91,7 +91,10 @@ double RecordTriggerTime(const MeasurementParams& m, const MeasuredRecord& r) {
     if (last_near + 1 >= rows) continue;  // this current never leaves
     std::size_t j = last_near;
     while (j > quiet && std::abs(v[j] - mean) > band) --j;
-    best = std::min(best, r.time_s[j]);
+    // The power went between row j (still levitated) and row j + 1: the middle of the interval
+    // is the unbiased estimate, wrong by half a sample at most where either end may be a whole
+    // one (a sampler that reads after the cut puts it on row j + 1, one before it on row j).
+    best = std::min(best, 0.5 * (r.time_s[j] + r.time_s[j + 1]));
   }
   if (!std::isfinite(best)) {
     throw std::runtime_error(
