@@ -7,7 +7,8 @@
 //
 // To stay quick, each case offers the fit a few competing effects of the library rather than all
 // of it (the competition is what is tested: misalignment of either TDB against the other effects
-// that also move the rest position or the fall).
+// that also move the rest position or the fall; each rig's friction coefficient, which each TDB
+// model takes in its own friction law).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -87,6 +88,10 @@ double Chosen(const Selection& s, const std::string& effect, const std::string& 
 void ExpectNamedAndCut(const Fitted& f, const std::string& effect) {
   const Selection& s = f.selection;
   EXPECT_TRUE(s.verdict == "explained" || s.verdict == "partly_explained") << s.reason;
+  // The fitted model's own sensitivity widens the limit, but never past a third of the
+  // declared model's residual (SelectionRules::explained_cut).
+  EXPECT_LE(s.limit_after, std::max(s.limit, s.rms_before / SelectionRules{}.explained_cut));
+  EXPECT_GE(s.limit_after, s.limit);
   ASSERT_FALSE(s.chosen.empty()) << s.reason;
   EXPECT_EQ(s.chosen.front(), effect);
   const double before = AboveNoise(s.rms_before, s.noise_floor);
@@ -109,6 +114,7 @@ TEST(FitOtherRigs, FlexibleRotorCleanRecordNeedsNoEffect) {
   const Fitted f = Fit(kFlexible, {}, {"tdb_misalignment:front", "amb_flux_decay"});
   EXPECT_EQ(f.selection.verdict, "no_effect_needed") << f.selection.reason;
   EXPECT_TRUE(f.selection.chosen.empty());
+  for (const CandidateScore& c : f.selection.candidates) EXPECT_FALSE(c.tried) << c.name;
 }
 
 TEST(FitOtherRigs, CatcherBearingRigFindsTheMisalignedTdb) {
@@ -120,6 +126,66 @@ TEST(FitOtherRigs, CatcherBearingRigFindsTheMisalignedTdb) {
   ExpectNamedAndCut(f, "tdb_misalignment:left");
   EXPECT_NEAR(Chosen(f.selection, "tdb_misalignment:left", "x_m"), 2e-5, 4e-6);
   EXPECT_NEAR(Chosen(f.selection, "tdb_misalignment:left", "y_m"), -3e-5, 6e-6);
+}
+
+// Each TDB model's own friction law takes the coefficient; the catcher bearing's races turn on
+// its bearings' moments alone, so a drag torque (a [spin] key) is not offered there.
+TEST(FitOtherRigs, TheLibraryOffersWhatEachTdbModelUses) {
+  const auto names = [](const ModelParams& p) {
+    std::vector<std::string> n;
+    for (const Effect& e : EffectLibrary(p)) n.push_back(e.name);
+    return n;
+  };
+  const auto has = [](const std::vector<std::string>& n, const char* name) {
+    return std::find(n.begin(), n.end(), name) != n.end();
+  };
+  const ModelParams flexible = testing::LoadTestConfig(kFlexible.config);
+  const std::vector<std::string> on_balls = names(flexible);
+  EXPECT_TRUE(has(on_balls, "friction_coefficient"));
+  EXPECT_TRUE(has(on_balls, "tdb_drag_torque:front"));
+  for (const Effect& e : EffectLibrary(flexible)) {
+    if (e.name != "friction_coefficient") continue;
+    ModelParams p = flexible;
+    e.apply({0.2}, &p);
+    for (std::size_t i = 0; i < p.tdbs.size(); ++i) {
+      const SlipFrictionParams& declared = flexible.tdbs[i].ball_bearing.friction;
+      const SlipFrictionParams& fitted = p.tdbs[i].ball_bearing.friction;
+      EXPECT_EQ(fitted.kinetic_coefficient, 0.2);
+      EXPECT_NEAR(fitted.static_coefficient / fitted.kinetic_coefficient,
+                  declared.static_coefficient / declared.kinetic_coefficient, 1e-12);
+    }
+    EXPECT_NE(e.config({0.2}).find("kinetic_coefficient = 0.2"), std::string::npos);
+  }
+
+  const std::vector<std::string> catcher = names(testing::LoadTestConfig(kCatcher.config));
+  EXPECT_TRUE(has(catcher, "friction_coefficient"));
+  EXPECT_FALSE(has(catcher, "tdb_drag_torque:left"));
+  EXPECT_FALSE(has(catcher, "tdb_drag_torque:right"));
+
+  // A frictionless law takes no coefficient.
+  const std::vector<std::string> frictionless = names(testing::LoadTestConfig(
+      kFlexible.config, {"tdb.front.ball_bearing_tdb.friction.law=\"none\"",
+                         "tdb.rear.ball_bearing_tdb.friction.law=\"none\""}));
+  EXPECT_FALSE(has(frictionless, "friction_coefficient"));
+}
+
+TEST(FitOtherRigs, CatcherBearingRigFindsItsFrictionCoefficient) {
+  const Fitted f =
+      Fit(kCatcher, {"tdb.left.friction.coefficient=0.2", "tdb.right.friction.coefficient=0.2"},
+          {"friction_coefficient", "tdb_misalignment:left", "amb_flux_decay"});
+  ExpectNamedAndCut(f, "friction_coefficient");
+  EXPECT_NEAR(Chosen(f.selection, "friction_coefficient", "coefficient"), 0.2, 0.04);
+}
+
+TEST(FitOtherRigs, FlexibleRotorFindsItsKineticFrictionCoefficient) {
+  const Fitted f = Fit(kFlexible,
+                       {"tdb.front.ball_bearing_tdb.friction.kinetic_coefficient=0.2",
+                        "tdb.front.ball_bearing_tdb.friction.static_coefficient=0.3",
+                        "tdb.rear.ball_bearing_tdb.friction.kinetic_coefficient=0.2",
+                        "tdb.rear.ball_bearing_tdb.friction.static_coefficient=0.3"},
+                       {"friction_coefficient", "amb_flux_decay"});
+  ExpectNamedAndCut(f, "friction_coefficient");
+  EXPECT_NEAR(Chosen(f.selection, "friction_coefficient", "coefficient"), 0.2, 0.04);
 }
 
 }  // namespace

@@ -277,7 +277,9 @@ int RunFitCommand(const FitOptions& options) {
     for (const ParameterEstimate& p : selection.chosen_fit.parameters) {
       fmt::print("    {} {} = {:.6g} +- {:.2g}\n", p.effect, p.name, p.value, p.sigma);
     }
-    fmt::print("  {} candidates in {:.1f} s; {}/fit.json, {}/report.md\n",
+    const auto fitted = std::count_if(selection.candidates.begin(), selection.candidates.end(),
+                                      [](const CandidateScore& c) { return c.tried; });
+    fmt::print("  {} of {} candidates fitted in {:.1f} s; {}/fit.json, {}/report.md\n", fitted,
                selection.candidates.size(), outcome.wall_time_s, options.out_dir, options.out_dir);
   }
   return kExitOk;

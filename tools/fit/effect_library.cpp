@@ -17,9 +17,37 @@ T& Named(std::vector<T>& list, const std::string& name) {
   return *std::find_if(list.begin(), list.end(), [&](const T& x) { return x.name == name; });
 }
 
+// Whether a TDB's model uses a friction coefficient between journal and inner race: contact-law,
+// 4-DOF and catcher-bearing TDBs the regularised Coulomb law's, the ball-bearing TDB (Chen 2019)
+// its own static/kinetic law's; none under a frictionless law.
 bool HasFriction(const TdbParams& t) {
-  // The regularised Coulomb law applies to these models' rotor / inner-race contact.
-  return t.model == TdbModelKind::kContactLaw || t.model == TdbModelKind::kFourDof;
+  if (t.model == TdbModelKind::kBallBearing) {
+    return t.ball_bearing.friction.law != SlipFrictionLaw::kNone;
+  }
+  return t.friction.law != FrictionLaw::kNone;
+}
+
+// The coefficient the journal slides on the race with. For the ball-bearing TDB that is the
+// kinetic one: a drop's spin-up is all slip, and the static one only bounds the force inside
+// the narrow stick band (rt_core/slip_friction.hpp).
+double SlidingCoefficient(const TdbParams& t) {
+  return t.model == TdbModelKind::kBallBearing ? t.ball_bearing.friction.kinetic_coefficient
+                                               : t.friction.coefficient;
+}
+
+// The ball-bearing TDB's static coefficient for a kinetic `mu`: in the declared proportion, as
+// the record cannot tell the two apart.
+double StaticCoefficient(const SlipFrictionParams& declared, double mu) {
+  return declared.kinetic_coefficient > 0.0
+             ? declared.static_coefficient * mu / declared.kinetic_coefficient
+             : std::max(declared.static_coefficient, mu);
+}
+
+// The inner race's drag torque enters its spin equation (rt_core/tdb_common.hpp
+// RaceAcceleration) for every model but the catcher bearing, whose races' moments are its
+// bearings' own (rt_core/catcher_bearing_tdb.cpp; its config rejects a [spin] table).
+bool HasDragTorque(const TdbParams& t) {
+  return t.spin.enabled && t.model != TdbModelKind::kCatcherBearing;
 }
 
 double SmallestClearance(const ModelParams& p) {
@@ -38,6 +66,7 @@ Effect TdbMisalignment(const TdbParams& t) {
   e.parameters = {{"x_m", -0.8 * c, 0.8 * c, {0.0, 0.3 * c, -0.3 * c}},
                   {"y_m", -0.8 * c, 0.8 * c, {0.0, 0.3 * c, -0.3 * c}}};
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
+  e.probe = {0.5 * c, -0.5 * c};
   e.apply = [name](const std::vector<double>& v, ModelParams* p) {
     TdbParams& t = Named(p->tdbs, name);
     t.misalignment = {true, v[0], v[1]};
@@ -53,23 +82,41 @@ Effect FrictionCoefficient(const ModelParams& declared) {
   Effect e;
   e.name = "friction_coefficient";
   e.family = "friction_coefficient";
-  e.description = "rotor / TDB friction coefficient (every TDB)";
+  e.description =
+      "rotor / TDB friction coefficient (every TDB; ball-bearing TDBs: the kinetic one, the "
+      "static one in proportion)";
   double mu = 0.2;
   for (const TdbParams& t : declared.tdbs) {
-    if (HasFriction(t)) mu = t.friction.coefficient;
+    if (HasFriction(t)) mu = SlidingCoefficient(t);
   }
   e.parameters = {{"coefficient", 0.01, 0.8, {mu, 0.5 * mu, std::min(0.8, 2.0 * mu)}}};
   e.revealed_by = {Q::kDisplacement, Q::kTdbSpeed, Q::kTdbNormalForce, Q::kRotorSpeed};
+  e.probe = {mu < 0.4 ? 2.0 * mu : 0.5 * mu};
+  // Applied to a copy of the declared params, so the ball-bearing TDBs' proportion is theirs.
   e.apply = [](const std::vector<double>& v, ModelParams* p) {
     for (TdbParams& t : p->tdbs) {
-      if (HasFriction(t)) t.friction.coefficient = v[0];
+      if (!HasFriction(t)) continue;
+      if (t.model == TdbModelKind::kBallBearing) {
+        SlipFrictionParams& f = t.ball_bearing.friction;
+        f.static_coefficient = StaticCoefficient(f, v[0]);
+        f.kinetic_coefficient = v[0];
+      } else {
+        t.friction.coefficient = v[0];
+      }
     }
   };
-  e.config = [names = declared.tdbs](const std::vector<double>& v) {
+  e.config = [tdbs = declared.tdbs](const std::vector<double>& v) {
     std::string s;
-    for (const TdbParams& t : names) {
-      if (HasFriction(t))
+    for (const TdbParams& t : tdbs) {
+      if (!HasFriction(t)) continue;
+      if (t.model == TdbModelKind::kBallBearing) {
+        s += fmt::format(
+            "[tdb.{}.ball_bearing_tdb.friction]\nstatic_coefficient = {:.6g}\n"
+            "kinetic_coefficient = {:.6g}\n",
+            t.name, StaticCoefficient(t.ball_bearing.friction, v[0]), v[0]);
+      } else {
         s += fmt::format("[tdb.{}.friction]\ncoefficient = {:.6g}\n", t.name, v[0]);
+      }
     }
     return s;
   };
@@ -96,6 +143,7 @@ Effect Unbalance(const ModelParams& declared) {
   e.parameters = {{"mass_eccentricity_kg_m", 0.0, 0.05, {0.0, 1e-4, 1e-3}},
                   {"phase_rad", -kPi, kPi, {0.0, 0.5 * kPi, kPi, -0.5 * kPi}, true}};
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
+  e.probe = {1e-3, 0.0};
   e.apply = [position](const std::vector<double>& v, ModelParams* p) {
     UnbalanceParams u;
     u.name = "fitted";
@@ -121,6 +169,7 @@ Effect FluxDecay(const ModelParams& declared) {
   e.description = "AMB force fading after power loss, exp(-2t/tau) (every AMB)";
   e.parameters = {{"time_constant_s", 1e-4, 0.1, {1e-4, 2e-3, 1e-2}}};
   e.revealed_by = {Q::kDisplacement, Q::kCurrent, Q::kTdbNormalForce};
+  e.probe = {2e-2};  // long: the declared model's loss is instant
   e.apply = [](const std::vector<double>& v, ModelParams* p) {
     for (AmbParams& a : p->ambs) a.flux_decay = {true, v[0]};
   };
@@ -144,6 +193,7 @@ Effect SensorRunout(const SensorParams& s, double clearance) {
   e.parameters = {{"amplitude_1x_m", 0.0, 0.3 * clearance, {0.0, 0.02 * clearance}},
                   {"phase_1x_rad", -kPi, kPi, {0.0, 0.5 * kPi, kPi, -0.5 * kPi}, true}};
   e.revealed_by = {Q::kDisplacement};
+  e.probe = {0.1 * clearance, 0.0};
   e.apply = [name](const std::vector<double>& v, ModelParams* p) {
     SensorParams& s = Named(p->sensors, name);
     s.runout.enabled = true;
@@ -167,6 +217,7 @@ Effect SensorGainOffset(const SensorParams& s, double clearance) {
   e.parameters = {{"gain", 0.7, 1.3, {s.gain}},
                   {"offset_m", -0.5 * clearance, 0.5 * clearance, {s.offset_m}}};
   e.revealed_by = {Q::kDisplacement};
+  e.probe = {1.2 * s.gain, s.offset_m + 0.1 * clearance};
   e.apply = [name](const std::vector<double>& v, ModelParams* p) {
     SensorParams& s = Named(p->sensors, name);
     s.gain = v[0];
@@ -191,6 +242,8 @@ Effect SensorLag(const SensorParams& s, double sample_s) {
   e.parameters = {{"delay_s", 0.0, 1e-3, {0.0, 2 * sample_s, 5 * sample_s}, false, sample_s},
                   {"filter_time_constant_s", 0.0, 1e-3, {0.0, 2e-4, 0.0}}};
   e.revealed_by = {Q::kDisplacement};
+  // At the delay's bound: a lag shows only weakly in a drop.
+  e.probe = {std::floor(1e-3 / sample_s) * sample_s, 5e-4};
   e.apply = [name](const std::vector<double>& v, ModelParams* p) {
     SensorParams& s = Named(p->sensors, name);
     s.lag.enabled = true;
@@ -212,6 +265,7 @@ Effect TdbDrag(const TdbParams& t) {
   e.description = fmt::format("constant drag torque on TDB {}'s inner race (seals, windage)", name);
   e.parameters = {{"drag_torque_N_m", 0.0, 5.0, {0.0, 0.05, 0.5}}};
   e.revealed_by = {Q::kTdbSpeed, Q::kDisplacement, Q::kRotorSpeed};
+  e.probe = {2.0};
   e.apply = [name](const std::vector<double>& v, ModelParams* p) {
     Named(p->tdbs, name).spin.drag_torque_N_m = std::max(0.0, v[0]);
   };
@@ -236,6 +290,7 @@ Effect RibbonDryFriction(const TdbParams& t) {
       name);
   e.parameters = {{"slipping_threshold_N", 0.0, 5000.0, {200.0, 1000.0, 2500.0}}};
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
+  e.probe = {1000.0};
   const KelvinVoigtRibbonParams kv = t.four_dof.kelvin_voigt;
   e.apply = [name, kv](const std::vector<double>& v, ModelParams* p) {
     TdbParams& t = Named(p->tdbs, name);
@@ -272,6 +327,7 @@ Effect RibbonCrossCoupling(const TdbParams& t) {
       name);
   e.parameters = {{"cross_coupling", 0.0, 2.0, {0.1, 0.5, 1.0}}};
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
+  e.probe = {1.0};
   const KelvinVoigtRibbonParams kv = t.four_dof.kelvin_voigt;
   e.apply = [name, kv](const std::vector<double>& v, ModelParams* p) {
     TdbParams& t = Named(p->tdbs, name);
@@ -310,7 +366,7 @@ std::vector<Effect> EffectLibrary(const ModelParams& declared) {
     if (!s.lag.enabled) effects.push_back(SensorLag(s, 1.0 / declared.controller.rate_Hz));
   }
   for (const TdbParams& t : declared.tdbs) {
-    if (t.spin.enabled) effects.push_back(TdbDrag(t));
+    if (HasDragTorque(t)) effects.push_back(TdbDrag(t));
   }
   // Ribbon laws apply to 4-DOF TDBs whose ribbon is declared Kelvin-Voigt.
   for (const TdbParams& t : declared.tdbs) {

@@ -30,6 +30,12 @@ struct Effect {
   std::vector<EffectParameter> parameters;
   /// Which measured quantities can reveal it; without any, the record cannot decide it.
   std::vector<MeasuredQuantity> revealed_by;
+  /// Parameter values at which the effect is strong (generous: an effect judged invisible at
+  /// them is not fitted). A record whose prediction they move less than the agreement limit
+  /// cannot reveal the effect whatever its channels: a TDB drag torque shows in the
+  /// displacements only once the race has caught up with the journal, which a short record
+  /// does not reach.
+  std::vector<double> probe;
   /// Sets the effect with these parameter values on a copy of the declared params.
   std::function<void(const std::vector<double>&, ModelParams*)> apply;
   /// The config keys that switch it on with these values (TOML lines, "[table]" headers).

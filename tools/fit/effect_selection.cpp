@@ -43,6 +43,15 @@ double AgreementLimit(const Selection& s, const SelectionRules& rules) {
                    rules.tolerance * rules.tolerance);
 }
 
+double AgreementLimitAfter(const Selection& s, const SelectionRules& rules, bool* capped) {
+  Selection widened = s;
+  widened.model_floor = std::max(s.model_floor, s.model_floor_after);
+  const double wide = AgreementLimit(widened, rules);
+  const double cap = std::max(AgreementLimit(s, rules), s.rms_before / rules.explained_cut);
+  if (capped != nullptr) *capped = wide > cap;
+  return std::min(wide, cap);
+}
+
 double AboveNoise(double rms, double noise_floor) {
   return std::sqrt(std::max(0.0, rms * rms - noise_floor * noise_floor));
 }
@@ -90,9 +99,17 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
     c.family = e.family;
     c.description = e.description;
     c.decidable = Decidable(e, cost.measurement());
+    if (!c.decidable) return;
+    if (!e.probe.empty()) {
+      const Eigen::VectorXd probed = cost.Residual(WithEffects(cost.declared(), {&e}, {e.probe}));
+      c.reach = OverallRms(cost, (probed - residual_before).squaredNorm());
+      // Even strong, it would stay within the limit: no fit could tell it from its absence.
+      c.decidable = c.reach > s.limit;
+      if (!c.decidable) return;
+    }
     // At the floor no candidate could be chosen: its fit would only cost runs (minutes for
     // the full library on a flexible rotor).
-    if (!c.decidable || at_floor) return;
+    if (at_floor) return;
     c.tried = true;
     c.fit = FitEffects(cost, {&e}, rules.max_runs_per_start, search);
     c.rms_after = OverallRms(cost, c.fit.sse);
@@ -144,14 +161,10 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
     }
     if (count > 0) moved = std::max(moved, nudged / static_cast<double>(count));
     s.model_floor_after = OverallRms(cost, moved);
-    Selection widened = s;
-    widened.model_floor = std::max(s.model_floor, s.model_floor_after);
-    const double cap = std::max(s.limit, s.rms_before / rules.explained_cut);
-    const double wide = AgreementLimit(widened, rules);
-    s.limit_after_capped = wide > cap;
-    s.limit_after = std::min(wide, cap);
+    s.limit_after = AgreementLimitAfter(s, rules, &s.limit_after_capped);
     return s.limit_after;
   };
+  double limit_after = s.limit;
   if (!order.empty() && !at_floor) {
     CandidateScore& best = s.candidates[order.front()];
     if (material(s.rms_before, best.rms_after, best.delta_bic)) {
@@ -159,8 +172,9 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
       s.chosen = {best.name};
       s.chosen_fit = best.fit;
       s.rms_after = best.rms_after;
+      limit_after = floor_limit(best.fit);
       // A structured residual left: the best with a partner.
-      if (best.rms_after > floor_limit(best.fit)) {
+      if (best.rms_after > limit_after) {
         const std::size_t partners =
             std::min<std::size_t>(order.size() - 1, static_cast<std::size_t>(rules.pair_partners));
         std::vector<CandidateScore> pairs(partners);
@@ -189,31 +203,31 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
           s.chosen = pairs[pick].fit.effects;
           s.chosen_fit = pairs[pick].fit;
           s.rms_after = pairs[pick].rms_after;
+          limit_after = floor_limit(s.chosen_fit);
         }
         for (CandidateScore& p : pairs) s.candidates.push_back(std::move(p));
       }
     }
   }
 
-  const double limit_after = s.chosen.empty() ? s.limit : floor_limit(s.chosen_fit);
-  if (s.chosen.empty()) {
-    s.model_floor_after = 0.0;
-    s.limit_after = s.limit;
-    s.limit_after_capped = false;
+  // What the record could not have shown: a verdict of agreement says nothing about these.
+  std::string unseen;
+  for (const CandidateScore& c : singles) {
+    if (!c.decidable) unseen += (unseen.empty() ? "" : ", ") + c.name;
   }
-
+  if (!unseen.empty()) unseen = "; the record cannot reveal " + unseen;
   if (at_floor) {
     s.verdict = "no_effect_needed";
     s.reason = fmt::format(
         "the declared model is already within {:.3g} of the record (relative RMS), inside the "
-        "agreement limit {:.3g}",
-        s.rms_before, s.limit);
+        "agreement limit {:.3g}{}",
+        s.rms_before, s.limit, unseen);
   } else if (s.chosen.empty()) {
     s.verdict = "unexplained";
     s.reason = fmt::format(
         "the residual ({:.3g}, agreement limit {:.3g}) is not cut by {:.0f} % or more by any "
-        "effect of the library",
-        s.rms_before, s.limit, 100.0 * (1.0 - 1.0 / rules.min_cut));
+        "effect of the library{}",
+        s.rms_before, s.limit, 100.0 * (1.0 - 1.0 / rules.min_cut), unseen);
   } else if (s.rms_after <= limit_after) {
     s.verdict = "explained";
     s.reason = fmt::format(

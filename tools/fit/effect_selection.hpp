@@ -4,6 +4,7 @@
 // its parameters (BIC = N ln(SSE/N) + k ln N); if a structured residual remains, the best is
 // tried with each of the next few as a pair. The verdict compares what is left with the
 // record's own noise.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -37,7 +38,12 @@ struct CandidateScore {
   std::string name;
   std::string family;
   std::string description;
-  bool decidable = true;  ///< false: no channel of the record can reveal it (not fitted)
+  /// false (not fitted): no channel of the record can reveal it, or this record does not show
+  /// it even at its probe values (reach below the agreement limit).
+  bool decidable = true;
+  /// How far the effect at its probe values (Effect::probe) moves the prediction, as an overall
+  /// relative RMS; NaN where not probed.
+  double reach = std::numeric_limits<double>::quiet_NaN();
   /// Fitted. false when undecidable, or when the declared model already agrees with the record
   /// within the agreement limit (fitting then could only cost runs: no effect would be chosen).
   bool tried = false;
@@ -64,7 +70,7 @@ struct Selection {
   /// The limit the verdict on the chosen effects used: the one widened by model_floor_after,
   /// capped by SelectionRules::explained_cut (= limit with nothing chosen).
   double limit_after = 0.0;
-  bool limit_after_capped = false;  ///< the cap, not model_floor_after, set limit_after
+  bool limit_after_capped = false;         ///< the cap, not model_floor_after, set limit_after
   std::vector<CandidateScore> candidates;  ///< singles in library order, then pairs
   std::vector<std::string> chosen;         ///< effect names
   EffectFit chosen_fit;                    ///< their parameters
@@ -76,6 +82,11 @@ struct Selection {
 /// What the residual is judged against: the noise floor's multiple, twice the model floor and
 /// the tolerance, in quadrature.
 double AgreementLimit(const Selection& s, const SelectionRules& rules);
+
+/// What the chosen effects' residual is judged against: AgreementLimit with the larger of
+/// model_floor and model_floor_after, but at most max(AgreementLimit(s), rms_before /
+/// rules.explained_cut). `capped`, if given, says whether the cap set it.
+double AgreementLimitAfter(const Selection& s, const SelectionRules& rules, bool* capped = nullptr);
 
 /// The part of an overall relative RMS that is model error: noise adds in quadrature, and no
 /// model predicts it. sqrt(max(0, rms^2 - floor^2)).

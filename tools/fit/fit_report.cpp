@@ -74,6 +74,9 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   json.Key("noise_floor").Number(s.noise_floor);
   json.Key("model_floor").Number(s.model_floor);
   json.Key("model_floor_after").Number(s.model_floor_after);
+  json.Key("agreement_limit").Number(s.limit);
+  json.Key("agreement_limit_after").Number(s.limit_after);
+  json.Key("agreement_limit_after_capped").Bool(s.limit_after_capped);
   json.Key("windows").BeginObject(true);
   json.Key("start_s").Number(o.before.windows.start_s);
   json.Key("trigger_s").Number(o.before.windows.trigger_s);
@@ -119,7 +122,9 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     json.Key("family").String(c.family);
     json.Key("decidable").Bool(c.decidable);
     json.Key("suggested_by_signatures").Bool(Suggested(o.before, c.family));
-    if (c.decidable) {
+    json.Key("tried").Bool(c.tried);
+    if (std::isfinite(c.reach)) json.Key("reach").Number(c.reach);
+    if (c.tried) {
       json.Key("rms_after").Number(c.rms_after);
       json.Key("delta_bic").Number(c.delta_bic);
       json.Key("accepted").Bool(c.accepted);
@@ -139,12 +144,27 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
 
   json.Key("undecidable").BeginArray();
   for (const Effect& e : *o.library) {
-    if (Decidable(e, m)) continue;
+    const CandidateScore* c = nullptr;
+    for (const CandidateScore& x : s.candidates) {
+      if (x.name == e.name) c = &x;
+    }
+    if (c == nullptr || c->decidable) continue;
     json.BeginObject(true);
     json.Key("effect").String(e.name);
+    // The quantities that would reveal it and the record lacks.
     json.Key("needs").BeginArray(true);
-    for (const MeasuredQuantity q : e.revealed_by) json.String(MeasuredQuantityName(q));
+    for (const MeasuredQuantity q : e.revealed_by) {
+      bool measured = false;
+      for (const MeasurementChannel& ch : m.channels) measured = measured || ch.quantity == q;
+      if (!measured) json.String(MeasuredQuantityName(q));
+    }
     json.EndArray();
+    if (std::isfinite(c->reach)) {
+      json.Key("reach").Number(c->reach);
+      json.Key("why").String("at its probe values the prediction moves within the agreement limit");
+    } else {
+      json.Key("why").String("no channel of the record can reveal it");
+    }
     json.EndObject();
   }
   json.EndArray();
@@ -222,8 +242,21 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
       "\n## Candidates\n\n| effect | suggested by the signatures | relative RMS with it | ΔBIC | "
       "accepted |\n|---|---|---|---|---|\n";
   for (const CandidateScore& c : s.candidates) {
+    if (!c.decidable && std::isfinite(c.reach)) {
+      md += fmt::format(
+          "| {} | | not decidable from this record: even strong, it moves the prediction by {:.2g} "
+          "only | | |\n",
+          c.name, c.reach);
+      continue;
+    }
     if (!c.decidable) {
       md += fmt::format("| {} | | not decidable from these channels | | |\n", c.name);
+      continue;
+    }
+    if (!c.tried) {
+      md +=
+          fmt::format("| {} | {} | not fitted: the declared model agrees within the limit | | |\n",
+                      c.name, Suggested(o.before, c.family) ? "yes" : "");
       continue;
     }
     md += fmt::format("| {} | {} | {:.4g} | {:.1f} | {} |\n", c.name,

@@ -21,9 +21,12 @@ struct FitOutcome {
   double wall_time_s = 0.0;
 };
 
-/// fit.json: rms_before and rms_after (per channel and overall), chosen (effects with fitted
-/// parameters, uncertainties and their config keys), candidates (every effect tried, with its
-/// score), undecidable (effects no channel of the record can reveal), verdict and reason.
+/// fit.json: rms_before and rms_after (per channel and overall), the agreement limits (the
+/// declared model's, and the one the chosen effects were judged by), chosen (effects with fitted
+/// parameters, uncertainties and their config keys), candidates (every effect of the library;
+/// those tried with their score, `"tried": false` for those not fitted: undecidable, or the
+/// declared model already agrees), undecidable (effects no channel of the record can reveal),
+/// verdict and reason.
 std::string FitJson(const FitOutcome& outcome, const ModelParams& params,
                     const MeasurementParams& measurement);
 
