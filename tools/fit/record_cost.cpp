@@ -125,8 +125,8 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
         window.push_back(raw[i]);
         if (window.size() == per_block || i + 1 == raw.size()) {
           const double n = static_cast<double>(window.size());
-          blocks.push_back({c, window.front(), std::vector<double>(window.size(), 1.0 / n), 0.0,
-                            0.0, 0.0});
+          blocks.push_back(
+              {c, window.front(), std::vector<double>(window.size(), 1.0 / n), 0.0, 0.0, 0.0});
           window.clear();
         }
       }
