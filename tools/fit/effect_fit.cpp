@@ -32,6 +32,9 @@ double Slope(const EffectParameter& p, double z) {
   return p.periodic ? 1.0 : 0.5 * (p.upper - p.lower) * std::cos(z);
 }
 
+// Searches from every combination of starts up to this many (9: two parameters of three).
+constexpr std::size_t kMaxStartCombinations = 9;
+
 // ~1 % of the range: contact makes the cost rough at finer scales.
 constexpr double kStep = 0.02;
 
@@ -124,12 +127,26 @@ EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& e
     best_z = problem.best_z;
     return true;
   };
-  for (std::size_t s = 0; s < starts; ++s) {
-    // Start s takes each parameter's start s (cycling through shorter lists).
+  // Every combination of the parameters' starts while there are few (a TDB offset's x and y
+  // take opposite signs as often as equal ones, and a diagonal of starts misses that quadrant);
+  // otherwise start s takes each parameter's start s, cycling through shorter lists.
+  std::size_t combinations = 1;
+  for (const Flat& f : flat) {
+    combinations *= std::max<std::size_t>(1, f.parameter->starts.size());
+    if (combinations > kMaxStartCombinations) break;
+  }
+  const bool all = combinations <= kMaxStartCombinations;
+  const std::size_t count = all ? combinations : starts;
+  for (std::size_t s = 0; s < count; ++s) {
     Eigen::VectorXd z(static_cast<Eigen::Index>(flat.size()));
+    std::size_t rest = s;
     for (std::size_t i = 0; i < flat.size(); ++i) {
       const EffectParameter& p = *flat[i].parameter;
-      const double v = p.starts.empty() ? 0.5 * (p.lower + p.upper) : p.starts[s % p.starts.size()];
+      double v = 0.5 * (p.lower + p.upper);
+      if (!p.starts.empty()) {
+        v = all ? p.starts[rest % p.starts.size()] : p.starts[s % p.starts.size()];
+        rest /= p.starts.size();
+      }
       z(static_cast<Eigen::Index>(i)) = ToSearch(p, v);
     }
     search_from(z);
