@@ -84,7 +84,9 @@ std::optional<LogLine> ParseLine(const std::string& line) {
 bool IsCandumpLog(const std::filesystem::path& path) {
   std::ifstream in(path);
   std::string line;
-  return static_cast<bool>(std::getline(in, line)) && !line.empty() && line[0] == '(';
+  // The whole first line must be a candump -l frame: a binary file (an LCM record, garbage)
+  // begins with '(' once in 256.
+  return static_cast<bool>(std::getline(in, line)) && ParseLine(line).has_value();
 }
 
 CandumpRecord ReadCandumpRecord(const std::filesystem::path& path, const Model& model,
