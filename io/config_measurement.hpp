@@ -16,6 +16,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "rt_core/model_params.hpp"
@@ -45,7 +46,15 @@ struct MeasurementChannel {
   int index = -1;  ///< sensor, AMB or TDB index in the model's order; -1 for rotor_speed
   int axis = -1;   ///< 0 = x, 1 = y for displacement and current; -1 otherwise
   std::string Describe(const ModelParams& params) const;  ///< "displacement de x"
+  static MeasurementChannel Of(std::string column, MeasuredQuantity quantity, int index, int axis) {
+    return {std::move(column), quantity, index, axis};
+  }
 };
+
+/// "x" for axis 0, "y" otherwise: the axis as column names and the [measurement] table spell it.
+inline const char* MeasurementAxisName(int axis) {
+  return axis == 0 ? "x" : "y";
+}
 
 struct MeasurementParams {
   double sample_rate_Hz = 0.0;

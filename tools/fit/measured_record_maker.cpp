@@ -18,19 +18,6 @@ namespace {
 
 using Currents = CurrentSampler::Currents;
 
-const char* AxisName(int axis) {
-  return axis == 0 ? "x" : "y";
-}
-
-MeasurementChannel Channel(std::string column, MeasuredQuantity quantity, int index, int axis) {
-  MeasurementChannel c;
-  c.column = std::move(column);
-  c.quantity = quantity;
-  c.index = index;
-  c.axis = axis;
-  return c;
-}
-
 /// The columns in a fixed order (groups as listed in MeasureChannelGroups), whatever order the
 /// groups were asked for in, so one set of groups always gives one file.
 std::vector<MeasurementChannel> Channels(const ModelParams& p, const MeasureChannelGroups& g) {
@@ -38,32 +25,35 @@ std::vector<MeasurementChannel> Channels(const ModelParams& p, const MeasureChan
   if (g.displacement) {
     for (std::size_t i = 0; i < p.sensors.size(); ++i) {
       for (int axis = 0; axis < 2; ++axis) {
-        out.push_back(Channel(fmt::format("{}_{}", AxisName(axis), p.sensors[i].name),
-                              MeasuredQuantity::kDisplacement, static_cast<int>(i), axis));
+        out.push_back(MeasurementChannel::Of(
+            fmt::format("{}_{}", MeasurementAxisName(axis), p.sensors[i].name),
+            MeasuredQuantity::kDisplacement, static_cast<int>(i), axis));
       }
     }
   }
   if (g.current) {
     for (std::size_t a = 0; a < p.ambs.size(); ++a) {
       for (int axis = 0; axis < 2; ++axis) {
-        out.push_back(Channel(fmt::format("i_{}_{}", p.ambs[a].name, AxisName(axis)),
-                              MeasuredQuantity::kCurrent, static_cast<int>(a), axis));
+        out.push_back(MeasurementChannel::Of(
+            fmt::format("i_{}_{}", p.ambs[a].name, MeasurementAxisName(axis)),
+            MeasuredQuantity::kCurrent, static_cast<int>(a), axis));
       }
     }
   }
   if (g.tdb_normal_force) {
     for (std::size_t t = 0; t < p.tdbs.size(); ++t) {
-      out.push_back(Channel("f_" + p.tdbs[t].name, MeasuredQuantity::kTdbNormalForce,
-                            static_cast<int>(t), -1));
+      out.push_back(MeasurementChannel::Of("f_" + p.tdbs[t].name, MeasuredQuantity::kTdbNormalForce,
+                                           static_cast<int>(t), -1));
     }
   }
   if (g.tdb_speed) {
     for (std::size_t t = 0; t < p.tdbs.size(); ++t) {
-      out.push_back(
-          Channel("w_" + p.tdbs[t].name, MeasuredQuantity::kTdbSpeed, static_cast<int>(t), -1));
+      out.push_back(MeasurementChannel::Of("w_" + p.tdbs[t].name, MeasuredQuantity::kTdbSpeed,
+                                           static_cast<int>(t), -1));
     }
   }
-  if (g.rotor_speed) out.push_back(Channel("w_rotor", MeasuredQuantity::kRotorSpeed, -1, -1));
+  if (g.rotor_speed)
+    out.push_back(MeasurementChannel::Of("w_rotor", MeasuredQuantity::kRotorSpeed, -1, -1));
   // A TDB named "rotor" would collide with the rotor's speed column.
   std::set<std::string> seen;
   for (const MeasurementChannel& c : out) {
@@ -278,7 +268,7 @@ std::string MeasurementTableToml(const ModelParams& truth, const MeasurementPara
       case MeasuredQuantity::kRotorSpeed:
         break;
     }
-    if (c.axis >= 0) out += fmt::format("axis = \"{}\"\n", AxisName(c.axis));
+    if (c.axis >= 0) out += fmt::format("axis = \"{}\"\n", MeasurementAxisName(c.axis));
   }
   return out;
 }

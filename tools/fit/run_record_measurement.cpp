@@ -12,44 +12,33 @@
 namespace ambdrop {
 namespace {
 
-const char* AxisName(int axis) {
-  return axis == 0 ? "x" : "y";
-}
-
-MeasurementChannel Channel(std::string column, MeasuredQuantity quantity, int index, int axis) {
-  MeasurementChannel c;
-  c.column = std::move(column);
-  c.quantity = quantity;
-  c.index = index;
-  c.axis = axis;
-  return c;
-}
-
 /// The columns in `ambdrop measure`'s order and with its names.
 std::vector<MeasurementChannel> Channels(const ModelParams& p, bool with_states) {
   std::vector<MeasurementChannel> out;
   for (std::size_t i = 0; i < p.sensors.size(); ++i) {
     for (int axis = 0; axis < 2; ++axis) {
-      out.push_back(Channel(fmt::format("{}_{}", AxisName(axis), p.sensors[i].name),
-                            MeasuredQuantity::kDisplacement, static_cast<int>(i), axis));
+      out.push_back(
+          MeasurementChannel::Of(fmt::format("{}_{}", MeasurementAxisName(axis), p.sensors[i].name),
+                                 MeasuredQuantity::kDisplacement, static_cast<int>(i), axis));
     }
   }
   for (std::size_t a = 0; a < p.ambs.size(); ++a) {
     for (int axis = 0; axis < 2; ++axis) {
-      out.push_back(Channel(fmt::format("i_{}_{}", p.ambs[a].name, AxisName(axis)),
-                            MeasuredQuantity::kCurrent, static_cast<int>(a), axis));
+      out.push_back(
+          MeasurementChannel::Of(fmt::format("i_{}_{}", p.ambs[a].name, MeasurementAxisName(axis)),
+                                 MeasuredQuantity::kCurrent, static_cast<int>(a), axis));
     }
   }
   if (with_states) {
     for (std::size_t t = 0; t < p.tdbs.size(); ++t) {
-      out.push_back(Channel("f_" + p.tdbs[t].name, MeasuredQuantity::kTdbNormalForce,
-                            static_cast<int>(t), -1));
+      out.push_back(MeasurementChannel::Of("f_" + p.tdbs[t].name, MeasuredQuantity::kTdbNormalForce,
+                                           static_cast<int>(t), -1));
     }
     for (std::size_t t = 0; t < p.tdbs.size(); ++t) {
-      out.push_back(
-          Channel("w_" + p.tdbs[t].name, MeasuredQuantity::kTdbSpeed, static_cast<int>(t), -1));
+      out.push_back(MeasurementChannel::Of("w_" + p.tdbs[t].name, MeasuredQuantity::kTdbSpeed,
+                                           static_cast<int>(t), -1));
     }
-    out.push_back(Channel("w_rotor", MeasuredQuantity::kRotorSpeed, -1, -1));
+    out.push_back(MeasurementChannel::Of("w_rotor", MeasuredQuantity::kRotorSpeed, -1, -1));
   }
   std::set<std::string> seen;
   for (const MeasurementChannel& c : out) {
