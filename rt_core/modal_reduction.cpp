@@ -127,6 +127,11 @@ ReducedRotor RigidReducedRotor(const RigidRotorParams& rigid,
   return r;
 }
 
+ReductionInputs ReductionInputsOf(const ModelParams& p) {
+  if (p.rotor.kind == RotorKind::kRigid) return {p.rotor, p.bearings, {}};
+  return {p.rotor, p.bearings, StationPositions(p)};
+}
+
 ReducedRotor BuildReducedRotor(const ModelParams& p) {
   if (p.rotor.kind == RotorKind::kRigid) return RigidReducedRotor(p.rotor.rigid, p.bearings);
   const FeRotor fe = AssembleFeRotor(p.rotor, StationPositions(p));

@@ -21,4 +21,14 @@ ReducedRotor RigidReducedRotor(const RigidRotorParams& rigid,
 /// The reduced rotor a config describes (flexible or rigid).
 ReducedRotor BuildReducedRotor(const ModelParams& params);
 
+/// Everything BuildReducedRotor reads: two configs with equal inputs have the same reduced
+/// rotor, so a caller that builds many models of one rig (a fit) can reduce it once.
+struct ReductionInputs {
+  RotorParams rotor;
+  std::vector<LinearBearingParams> bearings;
+  std::vector<double> stations_m;  ///< StationPositions, in their order
+  friend bool operator==(const ReductionInputs&, const ReductionInputs&) = default;
+};
+ReductionInputs ReductionInputsOf(const ModelParams& params);
+
 }  // namespace ambdrop

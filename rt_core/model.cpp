@@ -95,11 +95,10 @@ void SplitByPlane(Model* m) {
   for (std::size_t a = 0; a < m->params.ambs.size(); ++a) {
     const AmbParams& amb = m->params.ambs[a];
     const bool biased = amb.law == AmbForceLaw::kEquivalent && amb.gravity_compensation;
-    p.ambs.push_back({SplitStation(m->amb_shapes[a], h), amb,
-                      biased ? m->amb_bias_force_N[a][0] : 0.0,
-                      biased ? m->amb_bias_force_N[a][1] : 0.0, ControlCurrentLimit(amb),
-                      ElectromagnetConstant(amb.electromagnet),
-                      SaturatedCoilForce(amb.electromagnet)});
+    p.ambs.push_back(
+        {SplitStation(m->amb_shapes[a], h), amb, biased ? m->amb_bias_force_N[a][0] : 0.0,
+         biased ? m->amb_bias_force_N[a][1] : 0.0, ControlCurrentLimit(amb),
+         ElectromagnetConstant(amb.electromagnet), SaturatedCoilForce(amb.electromagnet)});
   }
   p.gyroscopic_xy = Block(m->rotor.gyroscopic, 0, h, h);
   p.gyroscopic_yx = Block(m->rotor.gyroscopic, h, 0, h);
@@ -110,9 +109,8 @@ void SplitByPlane(Model* m) {
   for (const auto& s : m->unbalance_shapes) p.unbalances.push_back(SplitStation(s, h));
 }
 
-}  // namespace
-
-Model BuildModel(const ModelParams& params) {
+// What BuildModel refuses before it builds anything.
+void CheckModelParams(const ModelParams& params) {
   CheckCount(params.tdbs.size(), kMaxTdbs, "touchdown bearings");
   CheckCount(params.ambs.size(), kMaxAmbs, "AMBs");
   CheckCount(params.sensors.size(), kMaxSensors, "sensors");
@@ -120,10 +118,20 @@ Model BuildModel(const ModelParams& params) {
   CheckCount(params.bearings.size(), kMaxLinearBearings, "linear bearings");
   if (!(params.simulation.step_s > 0.0))
     throw std::invalid_argument("simulation.step_s must be > 0");
+}
 
+}  // namespace
+
+Model BuildModel(const ModelParams& params) {
+  CheckModelParams(params);
+  return BuildModel(params, BuildReducedRotor(params));
+}
+
+Model BuildModel(const ModelParams& params, const ReducedRotor& rotor) {
+  CheckModelParams(params);
   Model m;
   m.params = params;
-  m.rotor = BuildReducedRotor(params);
+  m.rotor = rotor;
   const int n = m.rotor.size;
   for (const auto& a : params.ambs) m.amb_shapes.push_back(m.rotor.ShapeAt(a.position_m));
   for (const auto& t : params.tdbs) m.tdb_shapes.push_back(m.rotor.ShapeAt(t.position_m));

@@ -51,6 +51,10 @@ struct Model {
 /// TDB objects, AMB projections and the gravity compensation.
 Model BuildModel(const ModelParams& params);
 
+/// The same with the reduced rotor already built: `rotor` must be BuildReducedRotor of params
+/// (of params with equal ReductionInputsOf).
+Model BuildModel(const ModelParams& params, const ReducedRotor& rotor);
+
 /// Control currents that carry the static load (amb_bias_force_N) at the centre: the levitated
 /// starting point of a run driven by a controller.
 ControlInput StaticLoadInput(const Model& model);

@@ -9,6 +9,7 @@ struct Material {
   double youngs_modulus_Pa = 211e9;
   double shear_modulus_Pa = 81.2e9;
   double density_kg_m3 = 7810.0;
+  friend bool operator==(const Material&, const Material&) = default;
 };
 
 /// One cylindrical (optionally bored) shaft section; sections follow each other along +z from 0.
@@ -18,6 +19,7 @@ struct ShaftSection {
   double inner_diameter_m = 0.0;
   Material material;
   int elements = 1;  ///< Timoshenko elements in this section (more are added at stations)
+  friend bool operator==(const ShaftSection&, const ShaftSection&) = default;
 };
 
 /// Rigid disc or added mass at an axial position (coupling halves, impellers, laminations).
@@ -27,6 +29,7 @@ struct Disc {
   double mass_kg = 0.0;
   double polar_inertia_kg_m2 = 0.0;
   double transverse_inertia_kg_m2 = 0.0;
+  friend bool operator==(const Disc&, const Disc&) = default;
 };
 
 /// Rigid rotor: 4 DOF (x, y, theta_x, theta_y) at the centre of mass.
@@ -35,6 +38,7 @@ struct RigidRotorParams {
   double polar_inertia_kg_m2 = 0.0;
   double transverse_inertia_kg_m2 = 0.0;
   double centre_of_mass_m = 0.0;  ///< axial position of the centre of mass
+  friend bool operator==(const RigidRotorParams&, const RigidRotorParams&) = default;
 };
 
 enum class RotorKind { kFlexible, kRigid };
@@ -46,6 +50,7 @@ struct RotorParams {
   RigidRotorParams rigid;              ///< rigid rotor only
   int modes = 12;                      ///< pseudo-modal basis size (Jarroux 2019, Sec. 5)
   double modal_damping_ratio = 0.005;  ///< applied to the flexible modes only
+  friend bool operator==(const RotorParams&, const RotorParams&) = default;
 };
 
 /// Linear spring/damper support between the rotor and ground (tests, linearised bearings).
@@ -56,6 +61,7 @@ struct LinearBearingParams {
   double stiffness_y_N_per_m = 0.0;
   double damping_x_N_s_per_m = 0.0;
   double damping_y_N_s_per_m = 0.0;
+  friend bool operator==(const LinearBearingParams&, const LinearBearingParams&) = default;
 };
 
 /// Unbalance mass; the phase is the angle from +x at spin angle zero (at t = 0).

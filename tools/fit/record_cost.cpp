@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "tools/fit/noise_floor.hpp"
 
@@ -69,6 +70,7 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
                        std::size_t max_samples_per_channel, CostScope scope)
     : declared_(declared), measurement_(measurement), record_(record), run_(run), scope_(scope) {
   trigger_s_ = RecordTriggerTime(measurement, record);
+  if (!run_.rotor_cache) run_.rotor_cache = std::make_shared<ReducedRotorCache>();
   const bool closed = ClosedLoop(declared, run);
   const double t0 = record.time_s.front();
   const double t_end = record.time_s.back();

@@ -157,7 +157,8 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
   if (rotor_speed_column >= 0 && !closed) {
     params.simulation.spin_speed_rad_s = ValueAt(r, rotor_speed_column, t_start);
   }
-  const Model model = BuildModel(params);
+  const Model model =
+      options.rotor_cache ? options.rotor_cache->BuildModel(params) : BuildModel(params);
   const int n = model.modes();
 
   // Measured currents by AMB axis; the rest carry the static load.

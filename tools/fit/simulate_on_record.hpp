@@ -4,6 +4,7 @@
 // displacement channels show then: AMB currents drive an open-loop, unstable plant, so a run
 // started long before the trigger would drift away from the measurement on its own.
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "io/measured_csv.hpp"
 #include "rt_core/model_params.hpp"
 #include "rt_core/simulator.hpp"
+#include "tools/fit/reduced_rotor_cache.hpp"
 
 namespace ambdrop {
 
@@ -31,6 +33,9 @@ struct RecordRunOptions {
   /// Record time after which no row is wanted: the run stops there (rows after it stay NaN).
   /// A cost that compares only the drop's start need not pay for its whole settling.
   double end_s = std::numeric_limits<double>::infinity();
+  /// Shared by the runs of one fit (copies of these options share it): the rig's rotor is
+  /// reduced once. Null: each run reduces it.
+  std::shared_ptr<ReducedRotorCache> rotor_cache;
 };
 
 /// What the model says each measured channel should read.
