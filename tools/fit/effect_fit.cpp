@@ -100,13 +100,22 @@ ModelParams WithEffects(const ModelParams& declared, const std::vector<const Eff
 }
 
 EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& effects,
-                     int max_runs_per_start, const RecordCost* screen) {
+                     int max_runs_per_start, const RecordCost* screen,
+                     const std::vector<KnownStart>& known) {
   std::vector<Flat> flat;
+  // Each parameter's starts: what is known of it first, then its own.
+  std::vector<std::vector<double>> start_lists;
   std::size_t starts = 1;
   for (std::size_t e = 0; e < effects.size(); ++e) {
-    for (const EffectParameter& p : effects[e]->parameters) {
+    const KnownStart* k = e < known.size() && !known[e].values.empty() ? &known[e] : nullptr;
+    for (std::size_t i = 0; i < effects[e]->parameters.size(); ++i) {
+      const EffectParameter& p = effects[e]->parameters[i];
       flat.push_back({effects[e], e, &p});
-      starts = std::max(starts, p.starts.size());
+      std::vector<double> list;
+      if (k != nullptr) list.push_back(k->values[i]);
+      if (k == nullptr || !k->only) list.insert(list.end(), p.starts.begin(), p.starts.end());
+      start_lists.push_back(std::move(list));
+      starts = std::max(starts, start_lists.back().size());
     }
   }
   EffectFit fit;
@@ -131,8 +140,8 @@ EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& e
   // take opposite signs as often as equal ones, and a diagonal of starts misses that quadrant);
   // otherwise start s takes each parameter's start s, cycling through shorter lists.
   std::size_t combinations = 1;
-  for (const Flat& f : flat) {
-    combinations *= std::max<std::size_t>(1, f.parameter->starts.size());
+  for (const std::vector<double>& list : start_lists) {
+    combinations *= std::max<std::size_t>(1, list.size());
     if (combinations > kMaxStartCombinations) break;
   }
   const bool all = combinations <= kMaxStartCombinations;
@@ -142,10 +151,11 @@ EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& e
     std::size_t rest = s;
     for (std::size_t i = 0; i < flat.size(); ++i) {
       const EffectParameter& p = *flat[i].parameter;
+      const std::vector<double>& list = start_lists[i];
       double v = 0.5 * (p.lower + p.upper);
-      if (!p.starts.empty()) {
-        v = all ? p.starts[rest % p.starts.size()] : p.starts[s % p.starts.size()];
-        rest /= p.starts.size();
+      if (!list.empty()) {
+        v = all ? list[rest % list.size()] : list[s % list.size()];
+        rest /= list.size();
       }
       z(static_cast<Eigen::Index>(i)) = ToSearch(p, v);
     }

@@ -32,12 +32,21 @@ struct EffectFit {
 ModelParams WithEffects(const ModelParams& declared, const std::vector<const Effect*>& effects,
                         const std::vector<std::vector<double>>& values);
 
+/// Values an effect's parameters are known to fit well (its own single fit): searches start
+/// there, and also from the parameters' own starts unless `only`.
+struct KnownStart {
+  std::vector<double> values;  ///< empty: nothing known
+  bool only = false;
+};
+
 /// Fits the effects' parameters together. `max_runs_per_start` bounds the model runs of each
 /// start (the Jacobian costs one run per parameter). With `screen` (the same record's early,
 /// deterministic part: CostScope::kEarly), the starts are searched on it and the best is then
 /// refined on `cost` itself: where the drop turns chaotic after its impacts, `cost` is too
 /// rough for a gradient from afar, while the early part leads to the right basin.
+/// `known`, if not empty, has one entry per effect.
 EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& effects,
-                     int max_runs_per_start = 40, const RecordCost* screen = nullptr);
+                     int max_runs_per_start = 40, const RecordCost* screen = nullptr,
+                     const std::vector<KnownStart>& known = {});
 
 }  // namespace ambdrop

@@ -123,6 +123,39 @@ Effect FrictionCoefficient(const ModelParams& declared) {
   return e;
 }
 
+// The coefficient of one TDB only: the TDBs of a rig wear, and are lubricated, each its own way.
+Effect FrictionCoefficientAt(const TdbParams& t) {
+  const std::string name = t.name;
+  const double mu = SlidingCoefficient(t);
+  Effect e;
+  e.name = "friction_coefficient:" + name;
+  e.family = "friction_coefficient";
+  e.description = fmt::format("friction coefficient of TDB {} alone", name);
+  e.parameters = {{"coefficient", 0.01, 0.8, {mu, 0.5 * mu, std::min(0.8, 2.0 * mu)}}};
+  e.revealed_by = {Q::kDisplacement, Q::kTdbSpeed, Q::kTdbNormalForce, Q::kRotorSpeed};
+  e.probe = {mu < 0.4 ? 2.0 * mu : 0.5 * mu};
+  e.apply = [name](const std::vector<double>& v, ModelParams* p) {
+    TdbParams& t = Named(p->tdbs, name);
+    if (t.model == TdbModelKind::kBallBearing) {
+      SlipFrictionParams& f = t.ball_bearing.friction;
+      f.static_coefficient = StaticCoefficient(f, v[0]);
+      f.kinetic_coefficient = v[0];
+    } else {
+      t.friction.coefficient = v[0];
+    }
+  };
+  e.config = [t](const std::vector<double>& v) {
+    if (t.model == TdbModelKind::kBallBearing) {
+      return fmt::format(
+          "[tdb.{}.ball_bearing_tdb.friction]\nstatic_coefficient = {:.6g}\n"
+          "kinetic_coefficient = {:.6g}\n",
+          t.name, StaticCoefficient(t.ball_bearing.friction, v[0]), v[0]);
+    }
+    return fmt::format("[tdb.{}.friction]\ncoefficient = {:.6g}\n", t.name, v[0]);
+  };
+  return e;
+}
+
 Effect Unbalance(const ModelParams& declared) {
   // One plane, midway between the outermost TDBs: a static unbalance. Its moment about the
   // centre of mass and a second plane would be a further effect (couple unbalance).
@@ -355,6 +388,13 @@ std::vector<Effect> EffectLibrary(const ModelParams& declared) {
   }
   if (std::any_of(declared.tdbs.begin(), declared.tdbs.end(), HasFriction)) {
     effects.push_back(FrictionCoefficient(declared));
+    // Per TDB too where there are several: the common coefficient is the one a record of
+    // equal TDBs names (one parameter, where a pair would take two).
+    if (std::count_if(declared.tdbs.begin(), declared.tdbs.end(), HasFriction) > 1) {
+      for (const TdbParams& t : declared.tdbs) {
+        if (HasFriction(t)) effects.push_back(FrictionCoefficientAt(t));
+      }
+    }
   }
   effects.push_back(Unbalance(declared));
   const bool decays = std::any_of(declared.ambs.begin(), declared.ambs.end(),

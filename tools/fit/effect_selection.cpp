@@ -175,8 +175,11 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
       limit_after = floor_limit(best.fit);
       // A structured residual left: the best with a partner.
       if (best.rms_after > limit_after) {
-        const std::size_t partners =
-            std::min<std::size_t>(order.size() - 1, static_cast<std::size_t>(rules.pair_partners));
+        // Every other fitted effect is a partner: one that does little alone may be what the
+        // best leaves (two offset TDBs: the second offset alone fits the first one's drop
+        // badly). The best few alone are searched widely, the rest from where each fitted
+        // alone only.
+        const std::size_t partners = order.size() - 1;
         std::vector<CandidateScore> pairs(partners);
         const Effect& first = library[order.front()];
         ParallelFor(partners, rules.threads, [&](std::size_t p) {
@@ -185,14 +188,28 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
           c.name = first.name + " + " + second.name;
           c.family = first.family + " + " + second.family;
           c.description = first.description + "; " + second.description;
-          c.fit = FitEffects(cost, {&first, &second}, rules.max_runs_per_start, search);
+          // From where each fitted best alone: the first there only, the second (if among the
+          // best few) also from its own starts: alone it may have settled for what the first
+          // explains better.
+          const CandidateScore& alone = singles[order[p + 1]];
+          const bool wide = p < static_cast<std::size_t>(rules.pair_partners);
+          c.fit = FitEffects(cost, {&first, &second}, rules.max_runs_per_start, search,
+                             {{best.fit.values.front(), true}, {alone.fit.values.front(), !wide}});
           c.rms_after = OverallRms(cost, c.fit.sse);
           c.bic = Bic(c.fit.sse, cost.size(), Parameters(c.fit));
           c.delta_bic = c.bic - best.bic;
         });
+        // A second effect must explain more than the best's own sensitivity moves: where the
+        // best makes the drop chaotic, any added parameter nudges the bouncing, and some nudge
+        // lands closer to the record by chance.
+        const double chaos = s.model_floor_after;
+        const auto beyond_chaos = [&](double after) {
+          return std::sqrt(std::max(0.0, best.rms_after * best.rms_after - after * after)) > chaos;
+        };
         std::size_t pick = pairs.size();
         for (std::size_t p = 0; p < pairs.size(); ++p) {
           if (material(best.rms_after, pairs[p].rms_after, pairs[p].delta_bic) &&
+              beyond_chaos(pairs[p].rms_after) &&
               (pick == pairs.size() || pairs[p].bic < pairs[pick].bic)) {
             pick = p;
           }

@@ -29,7 +29,9 @@ struct SelectionRules {
   /// quantisation and a finer step in the record leave about 3e-4 with the true model
   /// (clean records of the PID rig at 5 and 2.5 us steps); six times that.
   double tolerance = 2e-3;
-  int pair_partners = 4;  ///< pairs tried: the best with each of the next this many
+  /// Pairs: the best with each other fitted effect; for this many next best, searched from the
+  /// partner's own starts too, not only from where each fitted alone.
+  int pair_partners = 4;
   int threads = 2;
   int max_runs_per_start = 40;
 };
