@@ -14,6 +14,7 @@
 
 #include "io/config_loader.hpp"
 #include "test_configs.hpp"
+#include "tools/fit/effect_selection.hpp"
 #include "tools/fit/fit_record.hpp"
 #include "tools/fit/measured_record_maker.hpp"
 
@@ -112,6 +113,18 @@ INSTANTIATE_TEST_SUITE_P(
                    "tdb_misalignment:de",
                    "y_m",
                    -4e-5},
+        EffectCase{"TdbClearance",
+                   kRig,
+                   {"tdb.de.clearance_m=3.1e-4"},
+                   "tdb_clearance:de",
+                   "clearance_m",
+                   3.1e-4},
+        EffectCase{"FrictionCoefficientOfOneTdb",
+                   kRig,
+                   {"tdb.nde.friction.coefficient=0.1"},
+                   "friction_coefficient:nde",
+                   "coefficient",
+                   0.1},
         EffectCase{"FrictionCoefficient",
                    kRig,
                    {"tdb.de.friction.coefficient=0.1", "tdb.nde.friction.coefficient=0.1"},
@@ -287,6 +300,39 @@ TEST(FitChannels, CurrentsAloneLeaveAllButFluxDecayUndecidable) {
     EXPECT_EQ(Decidable(e, currents), e.family == "amb_flux_decay") << e.name;
     EXPECT_TRUE(Decidable(e, displacements_and_currents)) << e.name;
   }
+}
+
+// Two effects that predict the same record cannot be told apart by it: the fit names the one it
+// chose and lists the other as equivalent, in fit.json and in the reason. Here the second is
+// the first under another name, so it fits exactly as well.
+TEST(FitVerdicts, EquallyGoodEffectsOfAnotherFamilyAreNamed) {
+  std::vector<std::string> truth = Timing();
+  for (const char* o : {"simulation.step_s=2.5e-6", "tdb.de.misalignment.enabled=true",
+                        "tdb.de.misalignment.x_m=2e-5", "tdb.de.misalignment.y_m=-4e-5"}) {
+    truth.push_back(o);
+  }
+  MeasureOptions noise;
+  noise.current_noise_A = 0.005;
+  const SyntheticMeasurement made = MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), noise);
+  const ModelParams declared = testing::LoadTestConfig(kRig, Timing());
+  const RecordCost cost(declared, made.measurement, made.record, RecordRunOptions{});
+  std::vector<Effect> library;
+  for (const Effect& e : EffectLibrary(declared)) {
+    if (e.name == "tdb_misalignment:de" || e.name == "amb_flux_decay") library.push_back(e);
+  }
+  ASSERT_EQ(library.size(), 2u);
+  Effect alias = library.front();
+  alias.name = "alias:de";
+  alias.family = "alias";
+  library.push_back(alias);
+  SelectionRules rules;
+  rules.threads = 2;
+  const Selection s = SelectEffects(cost, library, cost.NoiseFloor(), rules);
+  ASSERT_FALSE(s.chosen.empty()) << s.reason;
+  EXPECT_EQ(s.chosen.front(), "tdb_misalignment:de");
+  EXPECT_EQ(s.equivalent, std::vector<std::string>{"alias:de"});
+  EXPECT_NE(s.reason.find("alias:de"), std::string::npos) << s.reason;
+  EXPECT_NE(s.reason.find("cannot tell them apart"), std::string::npos) << s.reason;
 }
 
 TEST(FitVerdicts, AnEffectOutsideTheLibraryIsNotClaimedExplained) {

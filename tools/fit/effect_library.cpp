@@ -78,6 +78,28 @@ Effect TdbMisalignment(const TdbParams& t) {
   return e;
 }
 
+// A TDB whose radial clearance is not the declared one: wear, or a drawing's tolerance. In a
+// drop that stays in the vertical plane a larger clearance and a lower TDB look alike; the
+// selection reports such equivalent effects rather than picking one as if it were certain.
+Effect TdbClearance(const TdbParams& t) {
+  const std::string name = t.name;
+  const double c = t.clearance_m;
+  Effect e;
+  e.name = "tdb_clearance:" + name;
+  e.family = "tdb_clearance";
+  e.description = fmt::format("radial clearance of TDB {} (declared {:.4g} m)", name, c);
+  e.parameters = {{"clearance_m", 0.5 * c, 2.0 * c, {c, 1.3 * c, 0.8 * c}}};
+  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
+  e.probe = {1.5 * c};
+  e.apply = [name](const std::vector<double>& v, ModelParams* p) {
+    Named(p->tdbs, name).clearance_m = v[0];
+  };
+  e.config = [name](const std::vector<double>& v) {
+    return fmt::format("[tdb.{}]  # keys of the TDB's table\nclearance_m = {:.6g}\n", name, v[0]);
+  };
+  return e;
+}
+
 Effect FrictionCoefficient(const ModelParams& declared) {
   Effect e;
   e.name = "friction_coefficient";
@@ -386,6 +408,7 @@ std::vector<Effect> EffectLibrary(const ModelParams& declared) {
   for (const TdbParams& t : declared.tdbs) {
     if (!t.misalignment.enabled) effects.push_back(TdbMisalignment(t));
   }
+  for (const TdbParams& t : declared.tdbs) effects.push_back(TdbClearance(t));
   if (std::any_of(declared.tdbs.begin(), declared.tdbs.end(), HasFriction)) {
     effects.push_back(FrictionCoefficient(declared));
     // Per TDB too where there are several: the common coefficient is the one a record of

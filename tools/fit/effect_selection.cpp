@@ -233,6 +233,26 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
     if (!c.decidable) unseen += (unseen.empty() ? "" : ", ") + c.name;
   }
   if (!unseen.empty()) unseen = "; the record cannot reveal " + unseen;
+
+  // Other explanations as good as the chosen one: named, so no one takes the choice as proof.
+  std::string alike;
+  if (!s.chosen.empty()) {
+    std::string family;
+    for (const CandidateScore& c : singles) {
+      if (c.name == s.chosen.front()) family = c.family;
+    }
+    for (const CandidateScore& c : singles) {
+      if (!c.tried || !std::isfinite(c.fit.sse) || c.family == family) continue;
+      if (c.rms_after <= s.rms_after * rules.equivalent_margin) {
+        s.equivalent.push_back(c.name);
+        alike += fmt::format("{}{} ({:.3g})", alike.empty() ? "" : ", ", c.name, c.rms_after);
+      }
+    }
+    if (!alike.empty()) {
+      alike = "; " + alike + " fit" + (s.equivalent.size() == 1 ? "s" : "") +
+              " the record as well: it cannot tell them apart";
+    }
+  }
   if (at_floor) {
     s.verdict = "no_effect_needed";
     s.reason = fmt::format(
@@ -249,14 +269,14 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
     s.verdict = "explained";
     s.reason = fmt::format(
         "with the chosen effects the residual falls from {:.3g} to {:.3g}, within the agreement "
-        "limit {:.3g}",
-        s.rms_before, s.rms_after, limit_after);
+        "limit {:.3g}{}",
+        s.rms_before, s.rms_after, limit_after, alike);
   } else {
     s.verdict = "partly_explained";
     s.reason = fmt::format(
         "the chosen effects cut the residual from {:.3g} to {:.3g}, still above the agreement "
-        "limit {:.3g}",
-        s.rms_before, s.rms_after, limit_after);
+        "limit {:.3g}{}",
+        s.rms_before, s.rms_after, limit_after, alike);
   }
   return s;
 }

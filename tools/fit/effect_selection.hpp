@@ -32,6 +32,8 @@ struct SelectionRules {
   /// Pairs: the best with each other fitted effect; for this many next best, searched from the
   /// partner's own starts too, not only from where each fitted alone.
   int pair_partners = 4;
+  /// A single effect whose residual is within this factor of the chosen ones' is equivalent.
+  double equivalent_margin = 1.1;
   int threads = 2;
   int max_runs_per_start = 40;
 };
@@ -75,7 +77,11 @@ struct Selection {
   bool limit_after_capped = false;         ///< the cap, not model_floor_after, set limit_after
   std::vector<CandidateScore> candidates;  ///< singles in library order, then pairs
   std::vector<std::string> chosen;         ///< effect names
-  EffectFit chosen_fit;                    ///< their parameters
+  /// Single effects of other families than the first chosen that fit the record as well as
+  /// the chosen ones (residual within SelectionRules::equivalent_margin of theirs): the record
+  /// cannot tell them apart, and the verdict says so.
+  std::vector<std::string> equivalent;
+  EffectFit chosen_fit;  ///< their parameters
   double rms_after = 0.0;
   std::string verdict;  ///< explained | partly_explained | no_effect_needed | unexplained
   std::string reason;   ///< one sentence: why this verdict

@@ -115,6 +115,10 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   }
   json.EndArray();
 
+  json.Key("equivalent").BeginArray(true);
+  for (const std::string& e : s.equivalent) json.String(e);
+  json.EndArray();
+
   json.Key("candidates").BeginArray();
   for (const CandidateScore& c : s.candidates) {
     json.BeginObject();
