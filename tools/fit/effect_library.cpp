@@ -4,6 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <utility>
+
+#include "rt_core/limits.hpp"
 
 namespace ambdrop {
 namespace {
@@ -41,6 +45,27 @@ double StaticCoefficient(const SlipFrictionParams& declared, double mu) {
   return declared.kinetic_coefficient > 0.0
              ? declared.static_coefficient * mu / declared.kinetic_coefficient
              : std::max(declared.static_coefficient, mu);
+}
+
+// Sets the coefficient a TDB slides with (the ball-bearing TDB's static one in proportion), and
+// says it as config keys.
+void SetSlidingCoefficient(double mu, TdbParams* t) {
+  if (t->model == TdbModelKind::kBallBearing) {
+    SlipFrictionParams& f = t->ball_bearing.friction;
+    f.static_coefficient = StaticCoefficient(f, mu);
+    f.kinetic_coefficient = mu;
+  } else {
+    t->friction.coefficient = mu;
+  }
+}
+std::string SlidingCoefficientConfig(const TdbParams& t, double mu) {
+  if (t.model == TdbModelKind::kBallBearing) {
+    return fmt::format(
+        "[tdb.{}.ball_bearing_tdb.friction]\nstatic_coefficient = {:.6g}\n"
+        "kinetic_coefficient = {:.6g}\n",
+        t.name, StaticCoefficient(t.ball_bearing.friction, mu), mu);
+  }
+  return fmt::format("[tdb.{}.friction]\ncoefficient = {:.6g}\n", t.name, mu);
 }
 
 // The inner race's drag torque enters its spin equation (rt_core/tdb_common.hpp
@@ -117,28 +142,13 @@ Effect FrictionCoefficient(const ModelParams& declared) {
   // Applied to a copy of the declared params, so the ball-bearing TDBs' proportion is theirs.
   e.apply = [](const std::vector<double>& v, ModelParams* p) {
     for (TdbParams& t : p->tdbs) {
-      if (!HasFriction(t)) continue;
-      if (t.model == TdbModelKind::kBallBearing) {
-        SlipFrictionParams& f = t.ball_bearing.friction;
-        f.static_coefficient = StaticCoefficient(f, v[0]);
-        f.kinetic_coefficient = v[0];
-      } else {
-        t.friction.coefficient = v[0];
-      }
+      if (HasFriction(t)) SetSlidingCoefficient(v[0], &t);
     }
   };
   e.config = [tdbs = declared.tdbs](const std::vector<double>& v) {
     std::string s;
     for (const TdbParams& t : tdbs) {
-      if (!HasFriction(t)) continue;
-      if (t.model == TdbModelKind::kBallBearing) {
-        s += fmt::format(
-            "[tdb.{}.ball_bearing_tdb.friction]\nstatic_coefficient = {:.6g}\n"
-            "kinetic_coefficient = {:.6g}\n",
-            t.name, StaticCoefficient(t.ball_bearing.friction, v[0]), v[0]);
-      } else {
-        s += fmt::format("[tdb.{}.friction]\ncoefficient = {:.6g}\n", t.name, v[0]);
-      }
+      if (HasFriction(t)) s += SlidingCoefficientConfig(t, v[0]);
     }
     return s;
   };
@@ -157,30 +167,14 @@ Effect FrictionCoefficientAt(const TdbParams& t) {
   e.revealed_by = {Q::kDisplacement, Q::kTdbSpeed, Q::kTdbNormalForce, Q::kRotorSpeed};
   e.probe = {mu < 0.4 ? 2.0 * mu : 0.5 * mu};
   e.apply = [name](const std::vector<double>& v, ModelParams* p) {
-    TdbParams& t = Named(p->tdbs, name);
-    if (t.model == TdbModelKind::kBallBearing) {
-      SlipFrictionParams& f = t.ball_bearing.friction;
-      f.static_coefficient = StaticCoefficient(f, v[0]);
-      f.kinetic_coefficient = v[0];
-    } else {
-      t.friction.coefficient = v[0];
-    }
+    SetSlidingCoefficient(v[0], &Named(p->tdbs, name));
   };
-  e.config = [t](const std::vector<double>& v) {
-    if (t.model == TdbModelKind::kBallBearing) {
-      return fmt::format(
-          "[tdb.{}.ball_bearing_tdb.friction]\nstatic_coefficient = {:.6g}\n"
-          "kinetic_coefficient = {:.6g}\n",
-          t.name, StaticCoefficient(t.ball_bearing.friction, v[0]), v[0]);
-    }
-    return fmt::format("[tdb.{}.friction]\ncoefficient = {:.6g}\n", t.name, v[0]);
-  };
+  e.config = [t](const std::vector<double>& v) { return SlidingCoefficientConfig(t, v[0]); };
   return e;
 }
 
-Effect Unbalance(const ModelParams& declared) {
-  // One plane, midway between the outermost TDBs: a static unbalance. Its moment about the
-  // centre of mass and a second plane would be a further effect (couple unbalance).
+// The axial span of the TDBs: the planes the unbalance effects put their masses in.
+std::pair<double, double> TdbSpan(const ModelParams& declared) {
   double lo = 0.0, hi = 0.0;
   if (!declared.tdbs.empty()) {
     lo = hi = declared.tdbs.front().position_m;
@@ -189,6 +183,13 @@ Effect Unbalance(const ModelParams& declared) {
       hi = std::max(hi, t.position_m);
     }
   }
+  return {lo, hi};
+}
+
+Effect Unbalance(const ModelParams& declared) {
+  // One plane, midway between the outermost TDBs: a static unbalance. Its moment is the couple
+  // unbalance's (below); together, as a pair, they make any unbalance of a rigid rotor.
+  const auto [lo, hi] = TdbSpan(declared);
   const double position = 0.5 * (lo + hi);
   Effect e;
   e.name = "unbalance";
@@ -217,6 +218,46 @@ Effect Unbalance(const ModelParams& declared) {
   return e;
 }
 
+// A couple unbalance: equal masses in the outermost TDB planes, half a turn apart (the rotor's
+// principal axis tilted through its centre). What a static unbalance leaves of an unbalance
+// that sits off the middle.
+Effect CoupleUnbalance(const ModelParams& declared) {
+  const auto [lo, hi] = TdbSpan(declared);
+  Effect e;
+  e.name = "couple_unbalance";
+  e.family = "unbalance";
+  e.description = fmt::format(
+      "couple unbalance: mass x eccentricity at {:.4g} m and, half a turn on, at {:.4g} m", lo, hi);
+  e.parameters = {{"mass_eccentricity_kg_m", 0.0, 0.05, {0.0, 1e-4, 1e-3}},
+                  {"phase_rad", -kPi, kPi, {0.0, 0.5 * kPi, kPi, -0.5 * kPi}, true}};
+  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
+  e.probe = {1e-3, 0.0};
+  e.apply = [lo, hi](const std::vector<double>& v, ModelParams* p) {
+    for (const auto& [name, position, phase] :
+         {std::tuple{"fitted_couple_a", lo, v[1]}, std::tuple{"fitted_couple_b", hi, v[1] + kPi}}) {
+      UnbalanceParams u;
+      u.name = name;
+      u.position_m = position;
+      u.mass_kg = 1.0;
+      u.eccentricity_m = v[0];
+      u.phase_rad = phase;
+      p->unbalances.push_back(u);
+    }
+  };
+  e.config = [lo, hi](const std::vector<double>& v) {
+    std::string s;
+    for (const auto& [name, position, phase] :
+         {std::tuple{"fitted_couple_a", lo, v[1]}, std::tuple{"fitted_couple_b", hi, v[1] + kPi}}) {
+      s += fmt::format(
+          "[unbalance.{}]\nposition_m = {:.6g}\nmass_kg = 1.0\neccentricity_m = {:.6g}\n"
+          "phase_rad = {:.6g}\n",
+          name, position, v[0], std::remainder(phase, 2 * kPi));
+    }
+    return s;
+  };
+  return e;
+}
+
 Effect FluxDecay(const ModelParams& declared) {
   Effect e;
   e.name = "amb_flux_decay";
@@ -235,6 +276,26 @@ Effect FluxDecay(const ModelParams& declared) {
                        v[0]);
     }
     return s;
+  };
+  return e;
+}
+
+// The force of one AMB alone fading: each AMB has its own coils and amplifier.
+Effect FluxDecayAt(const AmbParams& a) {
+  const std::string name = a.name;
+  Effect e;
+  e.name = "amb_flux_decay:" + name;
+  e.family = "amb_flux_decay";
+  e.description = fmt::format("AMB {}'s force alone fading after power loss, exp(-2t/tau)", name);
+  e.parameters = {{"time_constant_s", 1e-4, 0.1, {1e-4, 2e-3, 1e-2}}};
+  e.revealed_by = {Q::kDisplacement, Q::kCurrent, Q::kTdbNormalForce};
+  e.probe = {2e-2};
+  e.apply = [name](const std::vector<double>& v, ModelParams* p) {
+    Named(p->ambs, name).flux_decay = {true, v[0]};
+  };
+  e.config = [name](const std::vector<double>& v) {
+    return fmt::format("[amb.{}.flux_decay]\nenabled = true\ntime_constant_s = {:.6g}\n", name,
+                       v[0]);
   };
   return e;
 }
@@ -420,9 +481,19 @@ std::vector<Effect> EffectLibrary(const ModelParams& declared) {
     }
   }
   effects.push_back(Unbalance(declared));
+  // Only where the TDB planes are apart, and there is room for its two masses.
+  const auto [lo, hi] = TdbSpan(declared);
+  if (hi > lo && declared.unbalances.size() + 3 <= static_cast<std::size_t>(kMaxUnbalances)) {
+    effects.push_back(CoupleUnbalance(declared));
+  }
   const bool decays = std::any_of(declared.ambs.begin(), declared.ambs.end(),
                                   [](const AmbParams& a) { return a.flux_decay.enabled; });
-  if (!declared.ambs.empty() && !decays) effects.push_back(FluxDecay(declared));
+  if (!declared.ambs.empty() && !decays) {
+    effects.push_back(FluxDecay(declared));
+    if (declared.ambs.size() > 1) {
+      for (const AmbParams& a : declared.ambs) effects.push_back(FluxDecayAt(a));
+    }
+  }
   for (const SensorParams& s : declared.sensors) {
     if (!s.runout.enabled) effects.push_back(SensorRunout(s, clearance));
     effects.push_back(SensorGainOffset(s, clearance));
