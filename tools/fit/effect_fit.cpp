@@ -35,6 +35,9 @@ double Slope(const EffectParameter& p, double z) {
 // Searches from every combination of starts up to this many (9: two parameters of three).
 constexpr std::size_t kMaxStartCombinations = 9;
 
+// Searched from the best this many of the starts, ranked by their cost.
+constexpr std::size_t kSearchedStarts = 3;
+
 // ~1 % of the range: contact makes the cost rough at finer scales.
 constexpr double kStep = 0.02;
 
@@ -146,6 +149,7 @@ EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& e
   }
   const bool all = combinations <= kMaxStartCombinations;
   const std::size_t count = all ? combinations : starts;
+  std::vector<Eigen::VectorXd> points;
   for (std::size_t s = 0; s < count; ++s) {
     Eigen::VectorXd z(static_cast<Eigen::Index>(flat.size()));
     std::size_t rest = s;
@@ -159,8 +163,30 @@ EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& e
       }
       z(static_cast<Eigen::Index>(i)) = ToSearch(p, v);
     }
-    search_from(z);
+    points.push_back(z);
   }
+  // Of many starts, the search runs from the few where the cost is least: one run each to
+  // rank them costs far less than a search from each (some 25 runs), and a start in the right
+  // quadrant of a TDB offset is already the closest.
+  if (points.size() > kSearchedStarts) {
+    std::vector<std::pair<double, std::size_t>> ranked;
+    for (std::size_t s = 0; s < points.size(); ++s) {
+      Problem probe(search_cost, effects, flat, 1);
+      Eigen::VectorXd f;
+      probe(points[s], f);
+      fit.evaluations += probe.runs;
+      ranked.emplace_back(probe.best_sse, s);
+      if (probe.best_sse < fit.sse) {
+        fit.sse = probe.best_sse;
+        best_z = points[s];
+      }
+    }
+    std::stable_sort(ranked.begin(), ranked.end());
+    std::vector<Eigen::VectorXd> kept;
+    for (std::size_t k = 0; k < kSearchedStarts; ++k) kept.push_back(points[ranked[k].second]);
+    points = std::move(kept);
+  }
+  for (const Eigen::VectorXd& z : points) search_from(z);
   if (best_z.size() == 0) return fit;
 
   // Quantised parameters: step to the neighbouring multiples while the cost falls, fitting
