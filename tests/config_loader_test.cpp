@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "scratch_directory.hpp"
+
 namespace ambdrop {
 namespace {
 
@@ -386,13 +388,13 @@ TEST(ConfigLoader, ShaftEndToleratesRoundingOfSectionLengths) {
 }
 
 TEST(ConfigLoader, LoadsFromFile) {
-  const auto path = std::filesystem::temp_directory_path() / "ambdrop_config_loader_test.toml";
+  const testing::ScratchDirectory dir("ambdrop_config_loader");
+  const auto path = dir.File("config.toml");
   {
     std::ofstream file(path);
     file << kMinimalRigid;
   }
   const LoadedConfig loaded = LoadConfig(path, {"rotor.rigid.mass_kg=20"});
-  std::filesystem::remove(path);
   EXPECT_EQ(loaded.source_path, path.string());
   EXPECT_EQ(loaded.source_text, kMinimalRigid);
   EXPECT_DOUBLE_EQ(loaded.params.rotor.rigid.mass_kg, 20.0);

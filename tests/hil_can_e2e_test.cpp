@@ -13,7 +13,6 @@
 // Config: configs/jarroux2019_industrial_pid_can.toml (1 kHz exchange on classic CAN).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -41,6 +40,7 @@
 #include "io/socketcan_bus.hpp"
 #include "malloc_guard.hpp"
 #include "rt_core/model.hpp"
+#include "scratch_directory.hpp"
 #include "test_configs.hpp"
 #include "tools/can_controller_link.hpp"
 #include "tools/can_pid_responder.hpp"
@@ -92,17 +92,16 @@ constexpr std::pair<const char*, const char*> kEmbeddedConfigs[] = {
 };
 
 /// The CAN config's path: in the source tree, or, where there is none (inside the hw VM), the
-/// built-in copies written to a temporary folder.
-std::string CanConfigPath() {
+/// built-in copies written to `*folder`, a scratch directory made here that lives as long as the
+/// caller keeps it.
+std::string CanConfigPath(std::optional<testing::ScratchDirectory>* folder) {
   const std::string source = testing::ConfigPath(kConfigFile);
   if (std::filesystem::exists(source)) return source;
-  const std::filesystem::path folder =
-      std::filesystem::temp_directory_path() / "ambdrop_hil_can_e2e_configs";
-  std::filesystem::create_directories(folder);
+  if (!folder->has_value()) folder->emplace("ambdrop_hil_can_e2e_configs");
   for (const auto& [name, text] : kEmbeddedConfigs) {
-    std::ofstream(folder / name, std::ios::binary) << text;
+    std::ofstream((*folder)->File(name), std::ios::binary) << text;
   }
-  return (folder / kConfigFile).string();
+  return (*folder)->File(kConfigFile).string();
 }
 
 /// Three endpoints on one bus: the emulator's, the controller's and the test's injector.
@@ -233,7 +232,7 @@ class HilCanE2e : public ::testing::TestWithParam<Transport> {
   void Load(std::vector<std::string> overrides = {}) {
     overrides.push_back("simulation.duration_s=0.25");
     overrides.push_back("trigger.enabled=false");
-    config_ = LoadConfig(CanConfigPath(), overrides);
+    config_ = LoadConfig(CanConfigPath(&configs_), overrides);
     ASSERT_TRUE(config_.can.has_value());
     model_.emplace(BuildModel(config_.params));
     view_.emplace(config_.can->frame_map);
@@ -310,6 +309,7 @@ class HilCanE2e : public ::testing::TestWithParam<Transport> {
     return RunSession(*model_, &link, std::move(triggers), at_time, [] {});
   }
 
+  std::optional<testing::ScratchDirectory> configs_;  // the built-in configs, in the hw VM
   LoadedConfig config_;
   std::optional<Model> model_;
   std::optional<ControllerFrameView> view_;
@@ -547,11 +547,9 @@ TEST_P(HilCanE2e, RecordAndCandumpLogReplayTheRunBitForBit) {
                     "only the in-process bus delivers synchronously";
   }
   Load({"controller.rate_Hz=1000"});
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("ambdrop_can_record_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  const auto lcm_log = dir / "run.lcm";
-  const auto candump_log = dir / "candump.log";
+  const testing::ScratchDirectory dir("ambdrop_can_record");
+  const auto lcm_log = dir.File("run.lcm");
+  const auto candump_log = dir.File("candump.log");
 
   // A fourth endpoint hears everything on the bus, as candump does.
   CanSocketOptions all;  // the kernel's default filter: every frame
@@ -616,7 +614,6 @@ TEST_P(HilCanE2e, RecordAndCandumpLogReplayTheRunBitForBit) {
   ReplayRun(*model_, dump.run, {}, [&](const RecordedSensors& s) { from_candump.Add(s); });
   EXPECT_EQ(from_candump.differing(), 0) << from_candump.Describe(config_.params.simulation.step_s);
   EXPECT_GT(from_candump.compared(), static_cast<std::int64_t>(record.sensors.size()) * 9 / 10);
-  std::filesystem::remove_all(dir);
 }
 
 INSTANTIATE_TEST_SUITE_P(Transports, HilCanE2e,

@@ -4,7 +4,6 @@
 // with the flux); the TDB forces and speeds are the run's own; the trigger is the recorded power
 // failure; and the same rig through `ambdrop measure` gives the same record.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -17,6 +16,7 @@
 #include "controller_if/offline_run.hpp"
 #include "rt_core/amb_force.hpp"
 #include "rt_core/model.hpp"
+#include "scratch_directory.hpp"
 #include "test_configs.hpp"
 #include "tools/fit/measured_record_maker.hpp"
 #include "tools/fit/run_record_measurement.hpp"
@@ -27,12 +27,6 @@ namespace ambdrop {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path TempPath(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("ambdrop_rrm_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
 
 bool SameBits(double a, double b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
@@ -110,7 +104,8 @@ int Column(const MeasuredRecord& r, const std::string& name) {
 }
 
 TEST(RunRecordMeasurement, ReadsTheRecordedDropAsMeasured) {
-  const RecordedDrop d = RecordDrop(TempPath("drop.lcm"));
+  const testing::ScratchDirectory scratch("ambdrop_rrm");
+  const RecordedDrop d = RecordDrop(scratch.File("drop.lcm"));
   ASSERT_TRUE(d.file.warnings.empty()) << d.file.warnings.front();
   const ModelParams& p = d.model->params;
   const double dt = p.simulation.step_s;
@@ -231,7 +226,8 @@ TEST(RunRecordMeasurement, ReadsTheRecordedDropAsMeasured) {
 }
 
 TEST(RunRecordMeasurement, IsWhatAmbdropMeasureReadsFromTheSameRig) {
-  const RecordedDrop d = RecordDrop(TempPath("same.lcm"));
+  const testing::ScratchDirectory scratch("ambdrop_rrm");
+  const RecordedDrop d = RecordDrop(scratch.File("same.lcm"));
   const RecordAsMeasurement from_record = MeasurementFromRunRecord(d.file, d.model->params);
   MeasureOptions options;  // at the controller's rate, no added noise
   const SyntheticMeasurement measured = MakeMeasuredRecord(d.config.params, options);
@@ -249,7 +245,8 @@ TEST(RunRecordMeasurement, IsWhatAmbdropMeasureReadsFromTheSameRig) {
 }
 
 TEST(RunRecordMeasurement, WhatTheRecordLacksIsLeftOutOrRefused) {
-  RecordedDrop d = RecordDrop(TempPath("lacking.lcm"));
+  const testing::ScratchDirectory scratch("ambdrop_rrm");
+  RecordedDrop d = RecordDrop(scratch.File("lacking.lcm"));
   const ModelParams& p = d.model->params;
   // No state events: no TDB or rotor speed channels. No power failure: the trigger is detected.
   RunRecordFile bare = d.file;

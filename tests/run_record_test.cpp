@@ -4,7 +4,6 @@
 // changed config gives a difference that starts where the physics says it must.
 #include <gtest/gtest.h>
 #include <lcm/eventlog.h>
-#include <unistd.h>
 
 #include <cstring>
 #include <filesystem>
@@ -16,6 +15,7 @@
 #include "controller_if/offline_run.hpp"
 #include "controller_if/replay_run.hpp"
 #include "io/event_log.hpp"
+#include "scratch_directory.hpp"
 #include "test_configs.hpp"
 #include "tools/record/run_record_reader.hpp"
 #include "tools/record/run_record_writer.hpp"
@@ -25,12 +25,6 @@ namespace ambdrop {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path TempPath(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("ambdrop_rr_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
 
 LoadedConfig PidConfig(double duration_s, std::vector<std::string> extra = {}) {
   std::vector<std::string> overrides = {"simulation.duration_s=" + std::to_string(duration_s),
@@ -88,9 +82,10 @@ std::vector<std::string> SensorNames(const Model& model) {
 }
 
 TEST(RunRecord, SimReplayIsBitIdentical) {
+  const testing::ScratchDirectory scratch("ambdrop_rr");
   const LoadedConfig config = PidConfig(0.12);
   const Model model = BuildModel(config.params);
-  const fs::path path = TempPath("sim.lcm");
+  const fs::path path = scratch.File("sim.lcm");
   const Recorded live = RecordSim(config, model, path);
 
   const RunRecordFile file = ReadRunRecord(path);
@@ -127,11 +122,13 @@ TEST(RunRecord, SimReplayIsBitIdentical) {
 }
 
 TEST(RunRecord, RecordingTheSameRunTwiceGivesTheSameBytes) {
+  const testing::ScratchDirectory scratch("ambdrop_rr");
   const LoadedConfig config = PidConfig(0.03);
   const Model model = BuildModel(config.params);
-  RecordSim(config, model, TempPath("a.lcm"));
-  RecordSim(config, model, TempPath("b.lcm"));
-  std::ifstream a(TempPath("a.lcm"), std::ios::binary), b(TempPath("b.lcm"), std::ios::binary);
+  RecordSim(config, model, scratch.File("a.lcm"));
+  RecordSim(config, model, scratch.File("b.lcm"));
+  std::ifstream a(scratch.File("a.lcm"), std::ios::binary),
+      b(scratch.File("b.lcm"), std::ios::binary);
   const std::vector<char> bytes_a((std::istreambuf_iterator<char>(a)), {});
   const std::vector<char> bytes_b((std::istreambuf_iterator<char>(b)), {});
   EXPECT_GT(bytes_a.size(), 1000U);
@@ -139,9 +136,10 @@ TEST(RunRecord, RecordingTheSameRunTwiceGivesTheSameBytes) {
 }
 
 TEST(RunRecord, LcmsOwnEventLogReaderReadsTheRecord) {
+  const testing::ScratchDirectory scratch("ambdrop_rr");
   const LoadedConfig config = PidConfig(0.02);
   const Model model = BuildModel(config.params);
-  const fs::path path = TempPath("lcm.lcm");
+  const fs::path path = scratch.File("lcm.lcm");
   RecordSim(config, model, path);
   lcm_eventlog_t* log = lcm_eventlog_create(path.c_str(), "r");
   ASSERT_NE(log, nullptr);
@@ -188,13 +186,14 @@ DamagedReplay ReplayDamaged(const fs::path& path) {
 }
 
 TEST(RunRecord, TruncatedLogReplaysUpToTheCutAndSaysWhere) {
+  const testing::ScratchDirectory scratch("ambdrop_rr");
   const LoadedConfig config = PidConfig(0.06);
   const Model model = BuildModel(config.params);
-  const fs::path path = TempPath("full.lcm");
+  const fs::path path = scratch.File("full.lcm");
   const Recorded live = RecordSim(config, model, path);
   const auto size = static_cast<std::int64_t>(fs::file_size(path));
   for (const double fraction : {0.3, 0.61, 0.97}) {
-    const fs::path cut = TempPath("cut.lcm");
+    const fs::path cut = scratch.File("cut.lcm");
     fs::copy_file(path, cut, fs::copy_options::overwrite_existing);
     const auto cut_at = static_cast<std::int64_t>(fraction * static_cast<double>(size)) + 7;
     fs::resize_file(cut, static_cast<std::uintmax_t>(cut_at));
@@ -211,18 +210,19 @@ TEST(RunRecord, TruncatedLogReplaysUpToTheCutAndSaysWhere) {
     EXPECT_GT(d.compared, 0);
   }
   // Cut inside the header: nothing usable, a clear error rather than a crash.
-  fs::resize_file(TempPath("cut.lcm"), 40);
-  EXPECT_THROW(ReadRunRecord(TempPath("cut.lcm")), std::runtime_error);
+  fs::resize_file(scratch.File("cut.lcm"), 40);
+  EXPECT_THROW(ReadRunRecord(scratch.File("cut.lcm")), std::runtime_error);
 }
 
 TEST(RunRecord, CorruptedLogStopsBeforeTheBadBlock) {
+  const testing::ScratchDirectory scratch("ambdrop_rr");
   const LoadedConfig config = PidConfig(0.06);
   const Model model = BuildModel(config.params);
-  const fs::path path = TempPath("good.lcm");
+  const fs::path path = scratch.File("good.lcm");
   const Recorded live = RecordSim(config, model, path);
   const auto size = static_cast<std::int64_t>(fs::file_size(path));
   for (const double fraction : {0.25, 0.5, 0.8}) {
-    const fs::path bad = TempPath("bad.lcm");
+    const fs::path bad = scratch.File("bad.lcm");
     fs::copy_file(path, bad, fs::copy_options::overwrite_existing);
     const auto at = static_cast<std::int64_t>(fraction * static_cast<double>(size));
     {
@@ -247,6 +247,7 @@ TEST(RunRecord, CorruptedLogStopsBeforeTheBadBlock) {
 }
 
 TEST(RunRecord, HilSessionReplayIsBitIdenticalWatchdogIncluded) {
+  const testing::ScratchDirectory scratch("ambdrop_rr");
   // The controller falls silent after 20 ms; the watchdog zeroes the currents; then the power
   // fails: every kind of input event is in the record.
   const LoadedConfig config = PidConfig(0.08);
@@ -270,7 +271,7 @@ TEST(RunRecord, HilSessionReplayIsBitIdenticalWatchdogIncluded) {
     int left_;
   } link(model, period_s, static_cast<int>(0.02 / period_s));
 
-  const fs::path path = TempPath("hil.lcm");
+  const fs::path path = scratch.File("hil.lcm");
   RecordHeaderInfo header = SimHeader(config, model);
   header.source = "hil";
   RunRecordWriter writer(path, model, header);
@@ -305,9 +306,10 @@ TEST(RunRecord, HilSessionReplayIsBitIdenticalWatchdogIncluded) {
 }
 
 TEST(RunRecord, ChangedFrictionDiffersOnlyFromTheFirstContactOn) {
+  const testing::ScratchDirectory scratch("ambdrop_rr");
   const LoadedConfig config = PidConfig(0.12);
   const Model model = BuildModel(config.params);
-  const fs::path path = TempPath("friction.lcm");
+  const fs::path path = scratch.File("friction.lcm");
   const Recorded live = RecordSim(config, model, path);
   double first_contact_s = -1.0;
   for (const Observation& o : live.observations) {
