@@ -125,52 +125,46 @@ Effect TdbClearance(const TdbParams& t) {
   return e;
 }
 
-Effect FrictionCoefficient(const ModelParams& declared) {
-  Effect e;
-  e.name = "friction_coefficient";
-  e.family = "friction_coefficient";
-  e.description =
-      "rotor / TDB friction coefficient (every TDB; ball-bearing TDBs: the kinetic one, the "
-      "static one in proportion)";
+// One coefficient for the given TDBs (those with friction), common or of one TDB.
+Effect FrictionCoefficientOf(const std::vector<TdbParams>& tdbs, std::string name,
+                             std::string description) {
   double mu = 0.2;
-  for (const TdbParams& t : declared.tdbs) {
-    if (HasFriction(t)) mu = SlidingCoefficient(t);
+  std::vector<TdbParams> rubbing;
+  for (const TdbParams& t : tdbs) {
+    if (!HasFriction(t)) continue;
+    mu = SlidingCoefficient(t);
+    rubbing.push_back(t);
   }
+  Effect e;
+  e.name = std::move(name);
+  e.family = "friction_coefficient";
+  e.description = std::move(description);
   e.parameters = {{"coefficient", 0.01, 0.8, {mu, 0.5 * mu, std::min(0.8, 2.0 * mu)}}};
   e.revealed_by = {Q::kDisplacement, Q::kTdbSpeed, Q::kTdbNormalForce, Q::kRotorSpeed};
   e.probe = {mu < 0.4 ? 2.0 * mu : 0.5 * mu};
   // Applied to a copy of the declared params, so the ball-bearing TDBs' proportion is theirs.
-  e.apply = [](const std::vector<double>& v, ModelParams* p) {
-    for (TdbParams& t : p->tdbs) {
-      if (HasFriction(t)) SetSlidingCoefficient(v[0], &t);
-    }
+  e.apply = [rubbing](const std::vector<double>& v, ModelParams* p) {
+    for (const TdbParams& t : rubbing) SetSlidingCoefficient(v[0], &Named(p->tdbs, t.name));
   };
-  e.config = [tdbs = declared.tdbs](const std::vector<double>& v) {
+  e.config = [rubbing](const std::vector<double>& v) {
     std::string s;
-    for (const TdbParams& t : tdbs) {
-      if (HasFriction(t)) s += SlidingCoefficientConfig(t, v[0]);
-    }
+    for (const TdbParams& t : rubbing) s += SlidingCoefficientConfig(t, v[0]);
     return s;
   };
   return e;
 }
 
+Effect FrictionCoefficient(const ModelParams& declared) {
+  return FrictionCoefficientOf(
+      declared.tdbs, "friction_coefficient",
+      "rotor / TDB friction coefficient (every TDB; ball-bearing TDBs: the kinetic one, the "
+      "static one in proportion)");
+}
+
 // The coefficient of one TDB only: the TDBs of a rig wear, and are lubricated, each its own way.
 Effect FrictionCoefficientAt(const TdbParams& t) {
-  const std::string name = t.name;
-  const double mu = SlidingCoefficient(t);
-  Effect e;
-  e.name = "friction_coefficient:" + name;
-  e.family = "friction_coefficient";
-  e.description = fmt::format("friction coefficient of TDB {} alone", name);
-  e.parameters = {{"coefficient", 0.01, 0.8, {mu, 0.5 * mu, std::min(0.8, 2.0 * mu)}}};
-  e.revealed_by = {Q::kDisplacement, Q::kTdbSpeed, Q::kTdbNormalForce, Q::kRotorSpeed};
-  e.probe = {mu < 0.4 ? 2.0 * mu : 0.5 * mu};
-  e.apply = [name](const std::vector<double>& v, ModelParams* p) {
-    SetSlidingCoefficient(v[0], &Named(p->tdbs, name));
-  };
-  e.config = [t](const std::vector<double>& v) { return SlidingCoefficientConfig(t, v[0]); };
-  return e;
+  return FrictionCoefficientOf({t}, "friction_coefficient:" + t.name,
+                               fmt::format("friction coefficient of TDB {} alone", t.name));
 }
 
 // The axial span of the TDBs: the planes the unbalance effects put their masses in.
@@ -258,68 +252,69 @@ Effect CoupleUnbalance(const ModelParams& declared) {
   return e;
 }
 
-Effect FluxDecay(const ModelParams& declared) {
+// The force of the given AMBs fading after power loss, with one time constant.
+Effect FluxDecayOf(std::vector<std::string> ambs, std::string name, std::string description) {
   Effect e;
-  e.name = "amb_flux_decay";
+  e.name = std::move(name);
   e.family = "amb_flux_decay";
-  e.description = "AMB force fading after power loss, exp(-2t/tau) (every AMB)";
+  e.description = std::move(description);
   e.parameters = {{"time_constant_s", 1e-4, 0.1, {1e-4, 2e-3, 1e-2}}};
   e.revealed_by = {Q::kDisplacement, Q::kCurrent, Q::kTdbNormalForce};
   e.probe = {2e-2};  // long: the declared model's loss is instant
-  e.apply = [](const std::vector<double>& v, ModelParams* p) {
-    for (AmbParams& a : p->ambs) a.flux_decay = {true, v[0]};
+  e.apply = [ambs](const std::vector<double>& v, ModelParams* p) {
+    for (const std::string& a : ambs) Named(p->ambs, a).flux_decay = {true, v[0]};
   };
-  e.config = [ambs = declared.ambs](const std::vector<double>& v) {
+  e.config = [ambs](const std::vector<double>& v) {
     std::string s;
-    for (const AmbParams& a : ambs) {
-      s += fmt::format("[amb.{}.flux_decay]\nenabled = true\ntime_constant_s = {:.6g}\n", a.name,
-                       v[0]);
+    for (const std::string& a : ambs) {
+      s += fmt::format("[amb.{}.flux_decay]\nenabled = true\ntime_constant_s = {:.6g}\n", a, v[0]);
     }
     return s;
   };
   return e;
 }
 
-// The force of one AMB alone fading: each AMB has its own coils and amplifier.
-Effect FluxDecayAt(const AmbParams& a) {
-  const std::string name = a.name;
-  Effect e;
-  e.name = "amb_flux_decay:" + name;
-  e.family = "amb_flux_decay";
-  e.description = fmt::format("AMB {}'s force alone fading after power loss, exp(-2t/tau)", name);
-  e.parameters = {{"time_constant_s", 1e-4, 0.1, {1e-4, 2e-3, 1e-2}}};
-  e.revealed_by = {Q::kDisplacement, Q::kCurrent, Q::kTdbNormalForce};
-  e.probe = {2e-2};
-  e.apply = [name](const std::vector<double>& v, ModelParams* p) {
-    Named(p->ambs, name).flux_decay = {true, v[0]};
-  };
-  e.config = [name](const std::vector<double>& v) {
-    return fmt::format("[amb.{}.flux_decay]\nenabled = true\ntime_constant_s = {:.6g}\n", name,
-                       v[0]);
-  };
-  return e;
+Effect FluxDecay(const ModelParams& declared) {
+  std::vector<std::string> ambs;
+  for (const AmbParams& a : declared.ambs) ambs.push_back(a.name);
+  return FluxDecayOf(std::move(ambs), "amb_flux_decay",
+                     "AMB force fading after power loss, exp(-2t/tau) (every AMB)");
 }
 
-Effect SensorRunout(const SensorParams& s, double clearance) {
+// The force of one AMB alone fading: each AMB has its own coils and amplifier.
+Effect FluxDecayAt(const AmbParams& a) {
+  return FluxDecayOf(
+      {a.name}, "amb_flux_decay:" + a.name,
+      fmt::format("AMB {}'s force alone fading after power loss, exp(-2t/tau)", a.name));
+}
+
+// One harmonic of a sensor's synchronous runout: 1X, an eccentric target; 2X, an oval one
+// (ground or worn out of round). The other harmonic stays as it is, so the two can pair.
+Effect SensorRunoutHarmonic(const SensorParams& s, double clearance, int order) {
   const std::string name = s.name;
+  const std::string x = order == 1 ? "1x" : "2x";
   Effect e;
-  e.name = "sensor_runout:" + name;
+  e.name = (order == 1 ? "sensor_runout:" : "sensor_runout_2x:") + name;
   e.family = "sensor_runout";
-  e.description = fmt::format("synchronous (1X) runout of sensor {}", name);
-  e.parameters = {{"amplitude_1x_m", 0.0, 0.3 * clearance, {0.0, 0.02 * clearance}},
-                  {"phase_1x_rad", -kPi, kPi, {0.0, 0.5 * kPi, kPi, -0.5 * kPi}, true}};
+  e.description = order == 1
+                      ? fmt::format("synchronous (1X) runout of sensor {}", name)
+                      : fmt::format("synchronous 2X runout (oval target) of sensor {}", name);
+  e.parameters = {{"amplitude_" + x + "_m", 0.0, 0.3 * clearance, {0.0, 0.02 * clearance}},
+                  {"phase_" + x + "_rad", -kPi, kPi, {0.0, 0.5 * kPi, kPi, -0.5 * kPi}, true}};
   e.revealed_by = {Q::kDisplacement};
   e.probe = {0.1 * clearance, 0.0};
-  e.apply = [name](const std::vector<double>& v, ModelParams* p) {
-    SensorParams& s = Named(p->sensors, name);
-    s.runout.enabled = true;
-    s.runout.amplitude_1x_m = std::abs(v[0]);
-    s.runout.phase_1x_rad = v[1];
+  e.apply = [name, order](const std::vector<double>& v, ModelParams* p) {
+    SensorRunoutParams& r = Named(p->sensors, name).runout;
+    if (!r.enabled) r = {};  // a disabled table's numbers are not declared
+    r.enabled = true;
+    (order == 1 ? r.amplitude_1x_m : r.amplitude_2x_m) = std::abs(v[0]);
+    (order == 1 ? r.phase_1x_rad : r.phase_2x_rad) = v[1];
   };
-  e.config = [name](const std::vector<double>& v) {
+  e.config = [name, x](const std::vector<double>& v) {
     return fmt::format(
-        "[sensor.{}.runout]\nenabled = true\namplitude_1x_m = {:.6g}\nphase_1x_rad = {:.6g}\n",
-        name, std::abs(v[0]), std::remainder(v[1], 2 * kPi));
+        "[sensor.{0}.runout]  # keys of the runout table\nenabled = true\namplitude_{1}_m = "
+        "{2:.6g}\nphase_{1}_rad = {3:.6g}\n",
+        name, x, std::abs(v[0]), std::remainder(v[1], 2 * kPi));
   };
   return e;
 }
@@ -495,7 +490,10 @@ std::vector<Effect> EffectLibrary(const ModelParams& declared) {
     }
   }
   for (const SensorParams& s : declared.sensors) {
-    if (!s.runout.enabled) effects.push_back(SensorRunout(s, clearance));
+    if (!s.runout.enabled) effects.push_back(SensorRunoutHarmonic(s, clearance, 1));
+    if (!s.runout.enabled || s.runout.amplitude_2x_m == 0.0) {
+      effects.push_back(SensorRunoutHarmonic(s, clearance, 2));
+    }
     effects.push_back(SensorGainOffset(s, clearance));
     if (!s.lag.enabled) effects.push_back(SensorLag(s, 1.0 / declared.controller.rate_Hz));
   }

@@ -23,6 +23,9 @@ class ReducedRotorCache {
   Model BuildModel(const ModelParams& params);
 
  private:
+  /// The entry for `key`, or null; the caller holds the mutex.
+  std::shared_ptr<const ReducedRotor> Find(const ReductionInputs& key) const;
+
   // Few distinct rotors occur in one fit (the declared one; with an unbalance plane, one
   // more): a short list, searched linearly, the most recent last.
   static constexpr std::size_t kCapacity = 8;
