@@ -8,8 +8,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <ostream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "io/config_loader.hpp"
@@ -103,6 +105,27 @@ std::string UnbalancePlane() {
   return "unbalance.truth.position_m=" + std::to_string(0.5 * (lo + hi));
 }
 
+// A couple unbalance as the library fits it: equal masses in the outermost TDB planes, half a
+// turn apart, here 1e-4 kg m each.
+std::vector<std::string> CoupleUnbalanceTruth() {
+  const ModelParams p = testing::LoadTestConfig(kRig);
+  double lo = p.tdbs.front().position_m, hi = lo;
+  for (const TdbParams& t : p.tdbs) {
+    lo = std::min(lo, t.position_m);
+    hi = std::max(hi, t.position_m);
+  }
+  std::vector<std::string> keys;
+  for (const auto& [name, position, phase] :
+       {std::tuple{"a", lo, -1.2}, std::tuple{"b", hi, -1.2 + std::numbers::pi}}) {
+    const std::string u = std::string("unbalance.couple_") + name + ".";
+    keys.push_back(u + "position_m=" + std::to_string(position));
+    keys.push_back(u + "mass_kg=0.01");
+    keys.push_back(u + "eccentricity_m=0.01");
+    keys.push_back(u + "phase_rad=" + std::to_string(phase));
+  }
+  return keys;
+}
+
 INSTANTIATE_TEST_SUITE_P(
     Library, FitEffects,
     ::testing::Values(
@@ -138,6 +161,8 @@ INSTANTIATE_TEST_SUITE_P(
                    "unbalance",
                    "mass_eccentricity_kg_m",
                    1e-4},
+        EffectCase{"CoupleUnbalance", kRig, CoupleUnbalanceTruth(), "couple_unbalance",
+                   "mass_eccentricity_kg_m", 1e-4},
         EffectCase{
             "AmbFluxDecay",
             kRig,

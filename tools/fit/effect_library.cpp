@@ -167,6 +167,13 @@ Effect FrictionCoefficientAt(const TdbParams& t) {
                                fmt::format("friction coefficient of TDB {} alone", t.name));
 }
 
+// Mass x eccentricity and phase, of a static or a couple unbalance.
+std::vector<EffectParameter> UnbalanceParameters() {
+  EffectParameter size{"mass_eccentricity_kg_m", 0.0, 0.05, {0.0, 1e-4, 1e-3}};
+  size.magnitude = true;
+  return {size, {"phase_rad", -kPi, kPi, {0.0, 0.5 * kPi, kPi, -0.5 * kPi}, true}};
+}
+
 // The axial span of the TDBs: the planes the unbalance effects put their masses in.
 std::pair<double, double> TdbSpan(const ModelParams& declared) {
   double lo = 0.0, hi = 0.0;
@@ -190,8 +197,7 @@ Effect Unbalance(const ModelParams& declared) {
   e.family = "unbalance";
   e.description =
       fmt::format("static unbalance at {:.4g} m (mass x eccentricity, phase)", position);
-  e.parameters = {{"mass_eccentricity_kg_m", 0.0, 0.05, {0.0, 1e-4, 1e-3}},
-                  {"phase_rad", -kPi, kPi, {0.0, 0.5 * kPi, kPi, -0.5 * kPi}, true}};
+  e.parameters = UnbalanceParameters();
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
   e.probe = {1e-3, 0.0};
   e.apply = [position](const std::vector<double>& v, ModelParams* p) {
@@ -222,8 +228,7 @@ Effect CoupleUnbalance(const ModelParams& declared) {
   e.family = "unbalance";
   e.description = fmt::format(
       "couple unbalance: mass x eccentricity at {:.4g} m and, half a turn on, at {:.4g} m", lo, hi);
-  e.parameters = {{"mass_eccentricity_kg_m", 0.0, 0.05, {0.0, 1e-4, 1e-3}},
-                  {"phase_rad", -kPi, kPi, {0.0, 0.5 * kPi, kPi, -0.5 * kPi}, true}};
+  e.parameters = UnbalanceParameters();
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
   e.probe = {1e-3, 0.0};
   e.apply = [lo, hi](const std::vector<double>& v, ModelParams* p) {

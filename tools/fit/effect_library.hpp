@@ -21,6 +21,9 @@ struct EffectParameter {
   /// > 0: the model only takes multiples of this (a delay in whole samples), so the cost is
   /// flat between them and the fit steps through them instead of following a gradient.
   double quantum = 0.0;
+  /// A size that spans decades from 0 (an unbalance): "a small change" is a thousandth of its
+  /// value, not of its range, which can be as large as the value itself.
+  bool magnitude = false;
 };
 
 struct Effect {
