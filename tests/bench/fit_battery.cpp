@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
@@ -350,6 +351,7 @@ int main(int argc, char** argv) {
   app.add_flag("--variants", variants,
                "Effects in other forms than the library's, and effects outside it");
   CLI11_PARSE(app, argc, argv);
+  if (!g_keep_dir.empty()) std::filesystem::create_directories(g_keep_dir);
 
   PortableRandom random(seed);
   int cases = 0, hits = 0;
