@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "io/config_loader.hpp"
+#include "misaligned_pid_record.hpp"
 #include "test_configs.hpp"
 #include "tools/fit/effect_selection.hpp"
 #include "tools/fit/fit_record.hpp"
@@ -344,14 +345,7 @@ TEST(FitChannels, CurrentsAloneLeaveAllButFluxDecayUndecidable) {
 // chose and lists the other as equivalent, in fit.json and in the reason. Here the second is
 // the first under another name, so it fits exactly as well.
 TEST(FitVerdicts, EquallyGoodEffectsOfAnotherFamilyAreNamed) {
-  std::vector<std::string> truth = Timing();
-  for (const char* o : {"simulation.step_s=2.5e-6", "tdb.de.misalignment.enabled=true",
-                        "tdb.de.misalignment.x_m=2e-5", "tdb.de.misalignment.y_m=-4e-5"}) {
-    truth.push_back(o);
-  }
-  MeasureOptions noise;
-  noise.current_noise_A = 0.005;
-  const SyntheticMeasurement made = MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), noise);
+  const SyntheticMeasurement made = testing::MisalignedPidRecord(Timing());
   const ModelParams declared = testing::LoadTestConfig(kRig, Timing());
   const RecordCost cost(declared, made.measurement, made.record, RecordRunOptions{});
   std::vector<Effect> library;

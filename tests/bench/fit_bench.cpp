@@ -4,26 +4,17 @@
 // Run: build/tests/fit_bench
 #include <benchmark/benchmark.h>
 
+#include "misaligned_pid_record.hpp"
 #include "test_configs.hpp"
 #include "tools/fit/fit_record.hpp"
-#include "tools/fit/measured_record_maker.hpp"
 
 namespace ambdrop {
 namespace {
 
-constexpr const char* kRig = "jarroux2019_industrial_pid.toml";
-
 void BM_FitHalfSecondRecord(benchmark::State& bench) {
   const std::vector<std::string> timing = {"simulation.duration_s=0.5", "trigger.time_s=0.2"};
-  std::vector<std::string> truth = timing;
-  for (const char* o : {"simulation.step_s=2.5e-6", "tdb.de.misalignment.enabled=true",
-                        "tdb.de.misalignment.x_m=2e-5", "tdb.de.misalignment.y_m=-4e-5"}) {
-    truth.push_back(o);
-  }
-  MeasureOptions noise;
-  noise.current_noise_A = 0.005;
-  const SyntheticMeasurement made = MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), noise);
-  const ModelParams declared = testing::LoadTestConfig(kRig, timing);
+  const SyntheticMeasurement made = testing::MisalignedPidRecord(timing);
+  const ModelParams declared = testing::LoadTestConfig(testing::kPidRig, timing);
   FitRecordOptions options;
   options.rules.threads = static_cast<int>(bench.range(0));
   std::size_t runs = 0;
