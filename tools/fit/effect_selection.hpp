@@ -26,8 +26,8 @@ struct SelectionRules {
   /// at least the 3x cut the tests ask of an effect that is in the record.
   double explained_cut = 3.0;
   /// A chosen model whose own floor (model_floor_after) exceeds this many declared agreement
-  /// limits, and whose widened limit the cap cuts, is explained only within the declared limit
-  /// and by a cut of explained_cut or more: otherwise its residual is chance.
+  /// limits, and whose widened limit the cap cuts, is at most partly_explained: inside the cap
+  /// or not, its residual is then chance.
   double confirmable_chaos = 2.0;
   /// An overall relative RMS (RecordCost) within which model and record agree anyway: noise,
   /// quantisation and a finer step in the record leave about 3e-4 with the true model
