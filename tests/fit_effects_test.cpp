@@ -12,6 +12,7 @@
 #include <ostream>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "io/config_loader.hpp"
@@ -95,26 +96,28 @@ TEST_P(FitEffects, NamesTheEffectRecoversItAndCutsTheResidual) {
                                  << " (noise floor " << s.noise_floor << ")";
 }
 
-// The fitted unbalance sits midway between the TDBs (tools/fit/effect_library.cpp).
-std::string UnbalancePlane() {
+// The axial span of the rig's TDBs, where the fitted unbalances sit
+// (tools/fit/effect_library.cpp).
+std::pair<double, double> TdbSpan() {
   const ModelParams p = testing::LoadTestConfig(kRig);
   double lo = p.tdbs.front().position_m, hi = lo;
   for (const TdbParams& t : p.tdbs) {
     lo = std::min(lo, t.position_m);
     hi = std::max(hi, t.position_m);
   }
+  return {lo, hi};
+}
+
+// The fitted static unbalance sits midway between the TDBs.
+std::string UnbalancePlane() {
+  const auto [lo, hi] = TdbSpan();
   return "unbalance.truth.position_m=" + std::to_string(0.5 * (lo + hi));
 }
 
 // A couple unbalance as the library fits it: equal masses in the outermost TDB planes, half a
 // turn apart, here 1e-4 kg m each.
 std::vector<std::string> CoupleUnbalanceTruth() {
-  const ModelParams p = testing::LoadTestConfig(kRig);
-  double lo = p.tdbs.front().position_m, hi = lo;
-  for (const TdbParams& t : p.tdbs) {
-    lo = std::min(lo, t.position_m);
-    hi = std::max(hi, t.position_m);
-  }
+  const auto [lo, hi] = TdbSpan();
   std::vector<std::string> keys;
   for (const auto& [name, position, phase] :
        {std::tuple{"a", lo, -1.2}, std::tuple{"b", hi, -1.2 + std::numbers::pi}}) {

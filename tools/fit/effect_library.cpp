@@ -187,35 +187,55 @@ std::pair<double, double> TdbSpan(const ModelParams& declared) {
   return {lo, hi};
 }
 
+// One mass x eccentricity and phase, in one or more planes: each plane's unbalance (named,
+// at its position) turned by its own phase offset.
+struct UnbalancePlane {
+  const char* name;
+  double position_m;
+  double phase_offset_rad;
+};
+
+Effect UnbalanceIn(std::vector<UnbalancePlane> planes, std::string name, std::string description) {
+  Effect e;
+  e.name = std::move(name);
+  e.family = "unbalance";
+  e.description = std::move(description);
+  e.parameters = UnbalanceParameters();
+  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
+  e.probe = {1e-3, 0.0};
+  e.apply = [planes](const std::vector<double>& v, ModelParams* p) {
+    for (const UnbalancePlane& plane : planes) {
+      UnbalanceParams u;
+      u.name = plane.name;
+      u.position_m = plane.position_m;
+      u.mass_kg = 1.0;
+      u.eccentricity_m = v[0];
+      u.phase_rad = v[1] + plane.phase_offset_rad;
+      p->unbalances.push_back(u);
+    }
+  };
+  e.config = [planes](const std::vector<double>& v) {
+    std::string s;
+    for (const UnbalancePlane& plane : planes) {
+      s += fmt::format(
+          "[unbalance.{}]\nposition_m = {:.6g}\nmass_kg = 1.0\neccentricity_m = {:.6g}\n"
+          "phase_rad = {:.6g}\n",
+          plane.name, plane.position_m, v[0],
+          std::remainder(v[1] + plane.phase_offset_rad, 2 * kPi));
+    }
+    return s;
+  };
+  return e;
+}
+
 Effect Unbalance(const ModelParams& declared) {
   // One plane, midway between the outermost TDBs: a static unbalance. Its moment is the couple
   // unbalance's (below); together, as a pair, they make any unbalance of a rigid rotor.
   const auto [lo, hi] = TdbSpan(declared);
   const double position = 0.5 * (lo + hi);
-  Effect e;
-  e.name = "unbalance";
-  e.family = "unbalance";
-  e.description =
-      fmt::format("static unbalance at {:.4g} m (mass x eccentricity, phase)", position);
-  e.parameters = UnbalanceParameters();
-  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
-  e.probe = {1e-3, 0.0};
-  e.apply = [position](const std::vector<double>& v, ModelParams* p) {
-    UnbalanceParams u;
-    u.name = "fitted";
-    u.position_m = position;
-    u.mass_kg = 1.0;
-    u.eccentricity_m = v[0];
-    u.phase_rad = v[1];
-    p->unbalances.push_back(u);
-  };
-  e.config = [position](const std::vector<double>& v) {
-    return fmt::format(
-        "[unbalance.fitted]\nposition_m = {:.6g}\nmass_kg = 1.0\neccentricity_m = {:.6g}\n"
-        "phase_rad = {:.6g}\n",
-        position, v[0], std::remainder(v[1], 2 * kPi));
-  };
-  return e;
+  return UnbalanceIn(
+      {{"fitted", position, 0.0}}, "unbalance",
+      fmt::format("static unbalance at {:.4g} m (mass x eccentricity, phase)", position));
 }
 
 // A couple unbalance: equal masses in the outermost TDB planes, half a turn apart (the rotor's
@@ -223,38 +243,11 @@ Effect Unbalance(const ModelParams& declared) {
 // that sits off the middle.
 Effect CoupleUnbalance(const ModelParams& declared) {
   const auto [lo, hi] = TdbSpan(declared);
-  Effect e;
-  e.name = "couple_unbalance";
-  e.family = "unbalance";
-  e.description = fmt::format(
-      "couple unbalance: mass x eccentricity at {:.4g} m and, half a turn on, at {:.4g} m", lo, hi);
-  e.parameters = UnbalanceParameters();
-  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
-  e.probe = {1e-3, 0.0};
-  e.apply = [lo, hi](const std::vector<double>& v, ModelParams* p) {
-    for (const auto& [name, position, phase] :
-         {std::tuple{"fitted_couple_a", lo, v[1]}, std::tuple{"fitted_couple_b", hi, v[1] + kPi}}) {
-      UnbalanceParams u;
-      u.name = name;
-      u.position_m = position;
-      u.mass_kg = 1.0;
-      u.eccentricity_m = v[0];
-      u.phase_rad = phase;
-      p->unbalances.push_back(u);
-    }
-  };
-  e.config = [lo, hi](const std::vector<double>& v) {
-    std::string s;
-    for (const auto& [name, position, phase] :
-         {std::tuple{"fitted_couple_a", lo, v[1]}, std::tuple{"fitted_couple_b", hi, v[1] + kPi}}) {
-      s += fmt::format(
-          "[unbalance.{}]\nposition_m = {:.6g}\nmass_kg = 1.0\neccentricity_m = {:.6g}\n"
-          "phase_rad = {:.6g}\n",
-          name, position, v[0], std::remainder(phase, 2 * kPi));
-    }
-    return s;
-  };
-  return e;
+  return UnbalanceIn(
+      {{"fitted_couple_a", lo, 0.0}, {"fitted_couple_b", hi, kPi}}, "couple_unbalance",
+      fmt::format(
+          "couple unbalance: mass x eccentricity at {:.4g} m and, half a turn on, at {:.4g} m", lo,
+          hi));
 }
 
 // The force of the given AMBs fading after power loss, with one time constant.
