@@ -17,7 +17,8 @@ LineContactParams ReadLineContact(const TableReader& parent) {
 
 SlipFrictionParams ReadSlipFriction(const TableReader& parent) {
   const TableReader table = parent.Table("friction");
-  table.AllowOnly({"law", "static_coefficient", "kinetic_coefficient", "stick_speed_m_s"});
+  table.AllowOnly(
+      {"law", "static_coefficient", "kinetic_coefficient", "stick_speed_m_s", "slip_speeds"});
   SlipFrictionParams params;
   params.law = table.Choice("law", {"static_kinetic", "none"}) == "none"
                    ? SlipFrictionLaw::kNone
@@ -25,6 +26,10 @@ SlipFrictionParams ReadSlipFriction(const TableReader& parent) {
   params.static_coefficient = table.Number("static_coefficient", NonNegative());
   params.kinetic_coefficient = table.Number("kinetic_coefficient", NonNegative());
   params.stick_speed_m_s = table.Number("stick_speed_m_s", NonNegative());
+  params.slip_speeds =
+      table.Choice("slip_speeds", {"contact_point", "spin_only"}, "contact_point") == "spin_only"
+          ? SlipSpeeds::kSpinOnly
+          : SlipSpeeds::kContactPoint;
   return params;
 }
 

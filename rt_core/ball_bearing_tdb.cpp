@@ -89,8 +89,11 @@ void BallBearingTdb::Evaluate(const JournalMotion& j, const double* s, double* r
   if (deflection > 0.0) {
     // Chen 2019 (seed 002), Eq. (5)
     normal = LineContactForce(b.line_contact, p.clearance_m, deflection);
-    // Chen 2019 (seed 002), Eq. (11)-(12): on the race along the slip, on the rotor against it.
-    friction = SlipFrictionForce(b.friction, normal, SurfaceSlip(p, j, g, race_speed));
+    // Chen 2019 (seed 002), Eq. (9)-(12): on the race along the slip, on the rotor against it.
+    const double slip = b.friction.slip_speeds == SlipSpeeds::kSpinOnly
+                            ? SpinSurfaceSlip(p, j, race_speed)
+                            : SurfaceSlip(p, j, g, race_speed);
+    friction = SlipFrictionForce(b.friction, normal, slip);
     // Chen 2019 (seed 002), Eq. (2)-(3), (8)
     ForceOnRotor(g, normal, -friction, &on_rotor_x, &on_rotor_y);
     out->torque_on_rotor_N_m = -friction * p.journal_radius_m;

@@ -17,6 +17,18 @@ enum class SlipFrictionLaw {
   kStaticKinetic  ///< Chen 2019 (seed 002), mu_r by the sign of vs - vi
 };
 
+/// Which speeds decide the slip vs - vi.
+enum class SlipSpeeds {
+  /// The journal's surface at the contact point (its spin plus its whirl) against the race's
+  /// surface: the slip the two surfaces really have, so friction only dissipates.
+  kContactPoint,
+  /// Chen 2019 (seed 002) Eq. (9)-(10) as printed: vs = omega_s Rs, vi = omega_i Ri, the spins
+  /// alone. While the race is slower than the journal's surface the friction keeps pushing the
+  /// journal backwards along the race, however it whirls: it can feed the whirl from the spin,
+  /// which the contact-point slip cannot once the race rolls with the journal.
+  kSpinOnly
+};
+
 /// Friction between journal and inner race, Chen 2019 (seed 002) Eq. (9)-(12):
 /// mu_r = mu_d sgn(vs - vi) while slipping, mu_s while the surfaces roll together. "Together" is
 /// the band |vs - vi| <= stick_speed_m_s, inside which the friction holds the surfaces with a
@@ -26,6 +38,7 @@ struct SlipFrictionParams {
   double static_coefficient = 0.0;   ///< mu_s
   double kinetic_coefficient = 0.0;  ///< mu_d
   double stick_speed_m_s = 0.0;      ///< half-width of the "vs = vi" band
+  SlipSpeeds slip_speeds = SlipSpeeds::kContactPoint;
 };
 
 /// Ball bearing of Z discrete balls, Chen 2019 (seed 002) Eq. (13)-(19) (Harris):

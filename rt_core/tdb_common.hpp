@@ -56,6 +56,14 @@ inline double SurfaceSlip(const TdbParams& p, const JournalMotion& j, const Cont
          race_speed_rad_s * inner_race_radius_m;
 }
 
+/// Slip of the journal's spin surface speed over the race's, whirl left out (m/s, along +spin):
+/// Chen 2019 (seed 002) Eq. (9)-(10), vs - vi with vs = omega_s Rs, vi = omega_i Ri.
+inline double SpinSurfaceSlip(const TdbParams& p, const JournalMotion& j,
+                              double race_speed_rad_s) noexcept {
+  const double inner_race_radius_m = p.journal_radius_m + p.clearance_m;
+  return j.spin_rad_s * p.journal_radius_m - race_speed_rad_s * inner_race_radius_m;
+}
+
 /// Contact force on the rotor: the normal force pushes the journal back along -n, the
 /// tangential one acts along t = (-ny, nx).
 inline void ForceOnRotor(const ContactGeometry& g, double normal_N, double tangential_N,

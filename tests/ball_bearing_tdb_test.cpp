@@ -216,6 +216,44 @@ TEST(BallBearingTdb, JournalOnTheRaceByHand) {
   EXPECT_NEAR(rate[S::kCageAngle], s[S::kRaceSpin] * 0.5 * (1.0 - 7.938e-3 / 0.0725), 1e-9);
 }
 
+// Chen 2019 (seed 002) Eq. (9)-(10) as printed take the slip from the spins alone; the contact
+// point's slip adds the journal's whirl. A journal whirling backwards (along -t) at 0.5 m/s
+// while its spin surface moves at only 0.3 m/s over a race at rest tells the two apart.
+TEST(BallBearingTdb, SpinOnlySlipFeedsABackwardWhirlThatContactPointSlipBrakes) {
+  const double fn = 9055.558153363561;                           // Eq. (5) at 10 um, as above
+  const JournalMotion j{0.0, -1.1e-4, -0.5, 0.0, 0.3 / 0.0299};  // t = +x at the bottom
+  States s{}, rate{};
+  TdbForce f;
+
+  const BallBearingTdb contact_point(Tdb());
+  contact_point.Evaluate(j, s.data(), rate.data(), &f);
+  // vs - vi = -0.5 + 0.3 = -0.2 m/s: -mu_d fn on the race, +mu_d fn on the rotor along t.
+  EXPECT_NEAR(f.tangential_force_N, -0.1 * fn, 1e-6);
+  EXPECT_NEAR(f.fx_N, 0.1 * fn, 1e-6);
+  EXPECT_LT(f.fx_N * j.vx_m_s, 0.0);  // brakes the whirl
+  // The pair dissipates: the friction's power, -Ft (vs - vi), is negative.
+  EXPECT_LT(-f.tangential_force_N * (-0.2), 0.0);
+
+  TdbParams literal = Tdb();
+  literal.ball_bearing.friction.slip_speeds = SlipSpeeds::kSpinOnly;
+  const BallBearingTdb spin_only(literal);
+  spin_only.Evaluate(j, s.data(), rate.data(), &f);
+  // vs - vi = 0.3 m/s: +mu_d fn on the race, the rotor pushed along -t, with its whirl.
+  EXPECT_NEAR(f.tangential_force_N, 0.1 * fn, 1e-6);
+  EXPECT_NEAR(f.fx_N, -0.1 * fn, 1e-6);
+  EXPECT_GT(f.fx_N * j.vx_m_s, 0.0);  // feeds the whirl
+  // ... and the pair's power is positive: the printed law can add energy, the contact point's
+  // slip cannot (the energy test below holds for the latter).
+  EXPECT_GT(-f.tangential_force_N * (-0.2), 0.0);
+  // With the race rolling at the journal's spin surface speed the printed law sees no slip at
+  // all, whatever the whirl.
+  s[S::kRaceSpin] = 0.3 / 0.03;
+  spin_only.Evaluate(j, s.data(), rate.data(), &f);
+  EXPECT_NEAR(f.tangential_force_N, 0.0, 1e-9);
+  contact_point.Evaluate(j, s.data(), rate.data(), &f);
+  EXPECT_NEAR(f.tangential_force_N, -0.1 * fn, 1e-6);
+}
+
 TEST(BallBearingTdb, SupportSpringAndDamperCarryTheOuterRace) {
   const BallBearingTdb tdb(Tdb(true));
   States s{}, rate{};

@@ -24,6 +24,16 @@ std::string ErrorOf(const std::string& file, const std::vector<std::string>& ove
   return "no error";
 }
 
+TEST(ConfigSeedTdbs, SlipSpeedsDefaultToTheContactPoint) {
+  const std::string rig = testing::ConfigPath("chen_itri_flexible.toml");
+  EXPECT_EQ(LoadConfig(rig).params.tdbs[0].ball_bearing.friction.slip_speeds,
+            SlipSpeeds::kContactPoint);
+  const ModelParams literal =
+      LoadConfig(rig, {"tdb.rear.ball_bearing_tdb.friction.slip_speeds=\"spin_only\""}).params;
+  EXPECT_EQ(literal.tdbs[0].ball_bearing.friction.slip_speeds, SlipSpeeds::kContactPoint);
+  EXPECT_EQ(literal.tdbs[1].ball_bearing.friction.slip_speeds, SlipSpeeds::kSpinOnly);
+}
+
 TEST(ConfigSeedTdbs, BallBearingTdbErrorsNameKeyAndExpectation) {
   const std::string rig = "chen_itri_flexible.toml";
   EXPECT_THAT(ErrorOf(rig, {"tdb.front.ball_bearing_tdb.line_contact.lenght_m=0.01"}),
@@ -41,6 +51,10 @@ TEST(ConfigSeedTdbs, BallBearingTdbErrorsNameKeyAndExpectation) {
   EXPECT_THAT(ErrorOf(rig, {"tdb.front.ball_bearing_tdb.friction.law=\"coulomb\""}),
               AllOf(HasSubstr("key 'tdb.front.ball_bearing_tdb.friction.law'"),
                     HasSubstr("\"static_kinetic\""), HasSubstr("found \"coulomb\"")));
+  EXPECT_THAT(ErrorOf(rig, {"tdb.front.ball_bearing_tdb.friction.slip_speeds=\"spin\""}),
+              AllOf(HasSubstr("key 'tdb.front.ball_bearing_tdb.friction.slip_speeds'"),
+                    HasSubstr("\"contact_point\""), HasSubstr("\"spin_only\""),
+                    HasSubstr("found \"spin\"")));
   EXPECT_THAT(ErrorOf(rig, {"tdb.front.ball_bearing_tdb.support.stiffness_N_per_m=-5e8"}),
               AllOf(HasSubstr("--set tdb.front.ball_bearing_tdb.support.stiffness_N_per_m=-5e8: "),
                     HasSubstr("expected a positive number (N/m), found -500000000")));
