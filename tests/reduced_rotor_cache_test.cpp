@@ -3,6 +3,7 @@
 // config that moves a station (an unbalance plane) gets its own reduction.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <thread>
 #include <vector>
@@ -18,13 +19,21 @@ ModelParams LoadTestConfigForCache() {
   return testing::LoadTestConfig("chen_itri_flexible.toml");
 }
 
-// The state after a drop onto the TDBs: what differs in a reduction shows here.
-StateVector DropState(const Model& model, int steps) {
+// The state after a drop onto the TDBs: what differs in a reduction shows here. `peak_N`: the
+// largest contact force on the way, so a caller can see that the run covered contact.
+StateVector DropState(const Model& model, int steps, double* peak_N = nullptr) {
   Simulator sim(model);
   State s = sim.InitialState();
+  Observation o;
+  double peak = 0.0;
   for (int i = 0; i < steps; ++i) {
     if (sim.Step(&s, ControlInput::PowerOff()) != StepStatus::kOk) break;
+    sim.Observe(s, &o);
+    for (std::size_t t = 0; t < model.params.tdbs.size(); ++t) {
+      peak = std::max(peak, o.tdb[t].normal_force_N);
+    }
   }
+  if (peak_N != nullptr) *peak_N = peak;
   return s.y;
 }
 
@@ -34,16 +43,17 @@ TEST(ReducedRotorCache, ModelOnACachedRotorRunsBitForBitAsOneBuiltAfresh) {
   const Model fresh = BuildModel(p);
   const Model first = cache.BuildModel(p);
   const Model again = cache.BuildModel(p);  // from the cache
-  const StateVector a = DropState(fresh, 8000);
+  double peak_N = 0.0;
+  const StateVector a = DropState(fresh, 8000, &peak_N);
   for (const Model* m : {&first, &again}) {
     const StateVector b = DropState(*m, 8000);
     ASSERT_EQ(a.size(), b.size());
     EXPECT_EQ(std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())),
               0);
   }
-  // The rotor has fallen onto its TDBs, so the comparison covers contact.
-  const double journal_y = fresh.tdb_shapes.front().row(1).dot(a.head(fresh.modes()));
-  EXPECT_LT(journal_y, -0.8 * p.tdbs.front().clearance_m);
+  // The rotor has fallen onto its TDBs, so the comparison covers contact: more than the
+  // 16 kg per TDB could press statically.
+  EXPECT_GT(peak_N, 32.0 * 9.81);
 }
 
 TEST(ReducedRotorCache, ReducesEachRotorOnceAndAMovedStationAfresh) {

@@ -8,7 +8,8 @@
 //    are lower than without (Fig. 12), at 18 000 rpm;
 //  - peak contact forces 2.3e4 / 2.35e4 N (front / rear) at 18 000 rpm, 2.25e4 / 2.15e4 N at
 //    14 000 (the text says 15 000 once) and 2.1e4 / 1.9e4 N at 10 000, each within 25 %, and
-//    falling with the speed (a known failure).
+//    falling with the speed; the medians over 8 unbalance phases, which the paper does not give
+//    (the rear at 14 000 and both at 10 000 rpm are known failures).
 // A check marked as a known failure (an open issue explains it) makes its test skip with that
 // reason after every other check has been asserted; AMBDROP_RUN_KNOWN_FAILURES=1 asserts it too.
 #include <gtest/gtest.h>

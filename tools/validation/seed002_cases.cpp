@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <numbers>
+#include <vector>
 
 #include "tools/validation/offline_drop.hpp"
 #include "tools/validation/validation_cases.hpp"
@@ -28,34 +29,70 @@ constexpr SpeedCase kSpeeds[3] = {
 constexpr double kCriticalClearance_m = 2e-4;
 constexpr double kTdbAirGap_m = 1e-4;
 
-// ambdrop, 0.2 s after the drop, peaks about an order of magnitude below the paper's with no
-// trend on the speed. A 0.1 mm fall of 16 kg per TDB brings 0.016 J; stored in the ~1e8-1e9 N/m
-// of balls and line contact that is ~2-3e3 N, and the 1.25 um eccentricity adds only 142 N at
-// 18 000 rpm. The paper's 2.3e4 N needs a violent whirl (or a stiffer/heavier set-up) that its
-// text does not specify; we do not tune unpublished parameters to reach it.
-// Why the paper's peaks are out of reach (worked out with the paper's own numbers): they equal
-// its Eq. (5) at its maximum journal displacement from the race centre (1.2e-4 m, so
-// delta = 1.9e-5 m with L = 13 mm). Storing that force takes 0.18 J per TDB in the line contact
-// (0.64 J with the balls in series, which would also put the journal at 1.7e-4 m), where the
-// drop supplies 0.02-0.03 J; a rigid race would still give only 5.7-8.7e3 N on first impact.
-// Only a friction-driven backward whirl adds energy: with the unpublished friction coefficient
-// and ball damping in physical ranges (mu 0.2-0.4, Cb 0) it reaches ~1e4 N, with the orbit
-// beyond 1.2e-4 m and no monotonic speed trend.
+// Where the paper's peaks come from: not the fall (16 kg per TDB through 0.1 mm is 0.016 J;
+// its 2.3e4 N on Eq. (5) alone stores ~0.2 J) but the spin. While the race spins up, the
+// un-lubricated contact (mu 0.3) drags the journal backwards round the race and the whirl takes
+// energy from the spin, as long as the race (1.05e-4 kg m^2: ring, balls and cage) lags behind.
+// Medians over 8 unbalance phases, 0.2 s: 2.29e4 / 2.02e4 N at 18 000 rpm (paper 2.3 / 2.35e4),
+// 1.79 / 1.51e4 at 14 000 (2.25 / 2.15e4), 1.15 / 0.92e4 at 10 000 (2.1 / 1.9e4); the journal
+// reaches 1.77e-4 m. With the earlier lubricated mu 0.1 and 6e-5 kg m^2 the peaks were 2-4e3 N.
+// What is left: the paper's peaks fall 9 % (front) and 19 % (rear) from 18 000 to 10 000 rpm,
+// ambdrop's halve. The whirl is fed while the race spins up, which lasts in proportion to the
+// speed. Over 96 sets of the unpublished values (mu 0.25-0.4, race inertia 1e-4 to 3e-4 kg m^2,
+// Cb 1320 or 3300 N s/m, L 6.5 or 13 mm, the slip as in Eq. (9)-(10) or at the contact point;
+// medians over 8 phases) the 18 000 / 10 000 rpm ratio is 1.5-4.6 (median 1.95; the paper's
+// 1.10 and 1.24) and no set puts all six peaks within 25 % (the best, 5 of 6 at mu 0.3 and
+// 1.5e-4 kg m^2, takes the journal to 1.95e-4 m of the 2e-4 m bound). Taking the slip from the
+// spins alone, as Eq. (9)-(10) print it (friction.slip_speeds = "spin_only"), moves the medians
+// by 3 % (the median over the 48 pairs; up to 26 % where mu 0.25 leaves the whirl on the edge).
 constexpr const char* kPeakKnownFailure =
-    "issue 5: the paper's ~2.3e4 N peaks need ~0.2-0.6 J per TDB, the drop supplies 0.02-0.03 J; "
-    "the race/ball chain carries at most 3.6e3 N within the paper's 1.2e-4 m, and a backward "
-    "whirl with unpublished friction reaches ~1e4 N (see seed002_cases.cpp)";
+    "issue 5: friction-fed backward whirl (un-lubricated mu 0.3, the race's spin inertia) gives "
+    "the paper's peaks at 18 000 rpm, but they halve by 10 000 rpm where the paper's fall 9-19 %: "
+    "the race's spin-up, which feeds the whirl, lasts in proportion to the speed; none of 96 sets "
+    "of the unpublished mu, race inertia, Cb and L puts all six within 25 % (see "
+    "seed002_cases.cpp)";
+
+// The paper gives no unbalance phase at the drop, and the drop is chaotic: the same rig at
+// another phase can peak 30-50 % off. The case runs 8 phases and compares the median (peaks,
+// forces after 0.1 s) with the paper; the displacement bound holds for the largest of them.
+constexpr int kUnbalancePhases = 8;
+
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
 
 OfflineDrop Drop(const std::string& config, double rpm, bool support) {
   const std::string on = support ? "true" : "false";
-  // Contact forces are read after the trigger; the "after 0.1 s" ones from 0.1 s after it.
-  return RunOfflineDrop(
-      config,
-      {fmt::format("simulation.spin_speed_rad_s={:.17g}", rpm * std::numbers::pi / 30.0),
-       "simulation.duration_s=0.21", "simulation.output_interval_s=2e-6",
-       std::string("tdb.") + kTdbNames[0] + ".ball_bearing_tdb.support.enabled=" + on,
-       std::string("tdb.") + kTdbNames[1] + ".ball_bearing_tdb.support.enabled=" + on},
-      0.1);
+  std::vector<OfflineDrop> runs;
+  for (int k = 0; k < kUnbalancePhases; ++k) {
+    // Contact forces are read after the trigger; the "after 0.1 s" ones from 0.1 s after it.
+    runs.push_back(RunOfflineDrop(
+        config,
+        {fmt::format("simulation.spin_speed_rad_s={:.17g}", rpm * std::numbers::pi / 30.0),
+         fmt::format("unbalance.rotor.phase_rad={:.17g}",
+                     2.0 * std::numbers::pi * k / kUnbalancePhases),
+         "simulation.duration_s=0.21", "simulation.output_interval_s=2e-6",
+         std::string("tdb.") + kTdbNames[0] + ".ball_bearing_tdb.support.enabled=" + on,
+         std::string("tdb.") + kTdbNames[1] + ".ball_bearing_tdb.support.enabled=" + on},
+        0.1));
+  }
+  OfflineDrop d = runs.front();
+  for (std::size_t t = 0; t < d.tdbs.size(); ++t) {
+    std::vector<double> normal, late, support_N;
+    for (const OfflineDrop& r : runs) {
+      d.ok = d.ok && r.ok;
+      normal.push_back(r.tdbs[t].normal_N);
+      late.push_back(r.tdbs[t].late_normal_N);
+      support_N.push_back(r.tdbs[t].support_N);
+      d.tdbs[t].journal_radius_m = std::max(d.tdbs[t].journal_radius_m, r.tdbs[t].journal_radius_m);
+    }
+    d.tdbs[t].normal_N = Median(normal);
+    d.tdbs[t].late_normal_N = Median(late);
+    d.tdbs[t].support_N = Median(support_N);
+  }
+  return d;
 }
 
 /// The peaks of TDB `name`; zeros when the rig has no such TDB, which fails the checks.
