@@ -1,6 +1,7 @@
 // Seed 003 (double-decker catcher bearing, Sec. 2.4 and 3): the rotor dropped at 200 Hz onto
 // DDCBs (ddcb_rigid.toml) and SDCBs (sdcb_rigid.toml), 0.2 s after the drop, through the case
-// `ambdrop validate` runs (tools/validation/seed003_cases.cpp):
+// `ambdrop validate` runs (tools/validation/seed003_cases.cpp), each quantity the median over
+// 8 unbalance phases at the drop (the paper's drop state is not given):
 //  - the DDCB lowers the peak rotor / inner-race contact force by 10-35 % (paper: 15-27 %);
 //  - the DDCB lowers the vibration amplitude by at least 20 % (paper: at least 28 %); amplitude
 //    here is the RMS distance of the journal from its mean position from first contact on (a

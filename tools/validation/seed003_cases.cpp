@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <numbers>
+#include <vector>
 
 #include "io/config_loader.hpp"
 #include "rt_core/catcher_bearing_tdb.hpp"
@@ -24,8 +26,11 @@ struct CatcherDrop {
   bool ok = false;
 };
 
-CatcherDrop Drop(const std::string& config_path) {
-  const Model model = BuildModel(LoadConfig(config_path).params);
+CatcherDrop DropAtPhase(const std::string& config_path, double unbalance_phase_rad) {
+  const Model model =
+      BuildModel(LoadConfig(config_path,
+                            {fmt::format("unbalance.rotor.phase_rad={:.17g}", unbalance_phase_rad)})
+                     .params);
   TdbPeakTracker peaks(model.params);
   OrbitRms orbit;
   const SteppedDrop run = RunSteppedDrop(model, 0.2, [&](const Observation& o) {
@@ -46,11 +51,45 @@ CatcherDrop Drop(const std::string& config_path) {
   return d;
 }
 
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// The paper's drops start "in the same initial motion state" (its drop board switches the AMBs
+// off at a set phase), which it does not give, and the drop is chaotic: each bearing type is
+// dropped at 8 unbalance phases and compared by its medians.
+constexpr int kUnbalancePhases = 8;
+
+CatcherDrop Drop(const std::string& config_path) {
+  std::vector<double> peak, amplitude, inner, intermediate;
+  CatcherDrop d;
+  d.ok = true;
+  for (int k = 0; k < kUnbalancePhases; ++k) {
+    const CatcherDrop r = DropAtPhase(config_path, 2.0 * std::numbers::pi * k / kUnbalancePhases);
+    d.ok = d.ok && r.ok;
+    peak.push_back(r.peak_normal_N);
+    amplitude.push_back(r.amplitude_m);
+    inner.push_back(r.inner_race_rad_s);
+    intermediate.push_back(r.intermediate_race_rad_s);
+  }
+  d.peak_normal_N = Median(peak);
+  d.amplitude_m = Median(amplitude);
+  d.inner_race_rad_s = Median(inner);
+  d.intermediate_race_rad_s = Median(intermediate);
+  return d;
+}
+
 // Not closed (issue 5). The paper (Sec. 2.4) reads the amplitude off Fig. 6, the left journal's
 // orbit 0-0.2 s after the drop ("the rotor jumping height using SDCBs is higher ... the amplitudes
 // of rotor vibration are decreased by at least 28 %"), from "initial vibration displacement 7 um
 // and velocity 0.6 m/s ... angle between the velocity and the horizontal axis 90 deg". ambdrop's
-// DDCB orbit is never 20 % smaller under any reading tried (DDCB vs SDCB, 0.2 s):
+// DDCB orbit is never 20 % smaller under any reading tried (DDCB vs SDCB, 0.2 s). Medians over
+// the 8 unbalance phases, as the case compares them: RMS +39 %, peak-to-peak x +27 %, y +26 %,
+// largest radius +7 %, and the DDCB's journal jumps higher (its highest point 60 um below the
+// centre, the SDCB's 68 um); with un-lubricated friction the RMS is +6 % (mu 0.2, 0.25) and
+// +15 % (mu 0.3), the force 27-30 % lower. Single drops, at unbalance phase 0:
 //   - levitated start (orbit 7.6 um, 9.6 mm/s: the paper's 7 um): RMS +27 %, peak-to-peak x
 //     +18 %, y +9 %, largest radius 145 vs 135 um;
 //   - the same with the unbalance phase set so the journal moves straight up at the drop (the
@@ -67,11 +106,11 @@ CatcherDrop Drop(const std::string& config_path) {
 // it, each pushing the force drop out of its 10-35 % band: friction 0.3 (RMS -24 %, force
 // -40 %) and ball contact damping 5x the paper's Table 2 (RMS -46 %, force -57 %).
 constexpr const char* kAmplitudeKnownFailure =
-    "issue 5: the DDCB's journal orbit is larger than the SDCB's (RMS +27 %, peak-to-peak x "
-    "+18 %, y +9 %), and never 20 % smaller with the paper's drop conditions (velocity straight "
-    "up, +0.6 m/s: RMS +3 %, p-p y +16 %) or over the unbalance phase (RMS -4 to +64 %): the "
-    "double decker's series compliance lets the journal rock wider in the race; only friction "
-    "0.3 or 5x Table 2's ball damping turn it, and both push the force drop past 35 %";
+    "issue 5: the DDCB's journal orbit is larger than the SDCB's (medians over 8 unbalance "
+    "phases: RMS +39 %, peak-to-peak x +27 %, y +26 %, and it jumps higher), and never 20 % "
+    "smaller with the paper's drop conditions (velocity straight up, +0.6 m/s) or with "
+    "un-lubricated friction (mu 0.2-0.3: RMS +6 to +15 %): the double decker's series compliance "
+    "lets the journal rock wider in the race (see seed003_cases.cpp)";
 
 }  // namespace
 
