@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tools/validation/offline_drop.hpp"
+#include "tools/validation/unbalance_phases.hpp"
 #include "tools/validation/validation_cases.hpp"
 
 namespace ambdrop {
@@ -52,17 +53,8 @@ constexpr const char* kPeakKnownFailure =
     "of the unpublished mu, race inertia, Cb and L puts all six within 25 % (see "
     "seed002_cases.cpp)";
 
-// The paper gives no unbalance phase at the drop, and the drop is chaotic: the same rig at
-// another phase can peak 30-50 % off. The case runs 8 phases and compares the median (peaks,
-// forces after 0.1 s) with the paper; the displacement bound holds for the largest of them.
-constexpr int kUnbalancePhases = 8;
-
-double Median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n == 0 ? 0.0 : n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
+// The paper gives no unbalance phase at the drop, and the drop is chaotic: the peaks and the
+// forces after 0.1 s are medians over the phases, the displacement the largest of them.
 OfflineDrop Drop(const std::string& config, double rpm, bool support) {
   const std::string on = support ? "true" : "false";
   std::vector<OfflineDrop> runs;
@@ -71,9 +63,8 @@ OfflineDrop Drop(const std::string& config, double rpm, bool support) {
     runs.push_back(RunOfflineDrop(
         config,
         {fmt::format("simulation.spin_speed_rad_s={:.17g}", rpm * std::numbers::pi / 30.0),
-         fmt::format("unbalance.rotor.phase_rad={:.17g}",
-                     2.0 * std::numbers::pi * k / kUnbalancePhases),
-         "simulation.duration_s=0.21", "simulation.output_interval_s=2e-6",
+         UnbalancePhaseOverride("rotor", k), "simulation.duration_s=0.21",
+         "simulation.output_interval_s=2e-6",
          std::string("tdb.") + kTdbNames[0] + ".ball_bearing_tdb.support.enabled=" + on,
          std::string("tdb.") + kTdbNames[1] + ".ball_bearing_tdb.support.enabled=" + on},
         0.1));

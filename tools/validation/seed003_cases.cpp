@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <numbers>
 #include <vector>
 
 #include "io/config_loader.hpp"
@@ -12,6 +11,7 @@
 #include "tools/validation/orbit_rms.hpp"
 #include "tools/validation/stepped_drop.hpp"
 #include "tools/validation/tdb_peaks.hpp"
+#include "tools/validation/unbalance_phases.hpp"
 #include "tools/validation/validation_cases.hpp"
 
 namespace ambdrop {
@@ -26,11 +26,9 @@ struct CatcherDrop {
   bool ok = false;
 };
 
-CatcherDrop DropAtPhase(const std::string& config_path, double unbalance_phase_rad) {
+CatcherDrop DropAtPhase(const std::string& config_path, int phase) {
   const Model model =
-      BuildModel(LoadConfig(config_path,
-                            {fmt::format("unbalance.rotor.phase_rad={:.17g}", unbalance_phase_rad)})
-                     .params);
+      BuildModel(LoadConfig(config_path, {UnbalancePhaseOverride("rotor", phase)}).params);
   TdbPeakTracker peaks(model.params);
   OrbitRms orbit;
   const SteppedDrop run = RunSteppedDrop(model, 0.2, [&](const Observation& o) {
@@ -51,23 +49,15 @@ CatcherDrop DropAtPhase(const std::string& config_path, double unbalance_phase_r
   return d;
 }
 
-double Median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n == 0 ? 0.0 : n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 // The paper's drops start "in the same initial motion state" (its drop board switches the AMBs
 // off at a set phase), which it does not give, and the drop is chaotic: each bearing type is
-// dropped at 8 unbalance phases and compared by its medians.
-constexpr int kUnbalancePhases = 8;
-
+// compared by its medians over the unbalance phases.
 CatcherDrop Drop(const std::string& config_path) {
   std::vector<double> peak, amplitude, inner, intermediate;
   CatcherDrop d;
   d.ok = true;
   for (int k = 0; k < kUnbalancePhases; ++k) {
-    const CatcherDrop r = DropAtPhase(config_path, 2.0 * std::numbers::pi * k / kUnbalancePhases);
+    const CatcherDrop r = DropAtPhase(config_path, k);
     d.ok = d.ok && r.ok;
     peak.push_back(r.peak_normal_N);
     amplitude.push_back(r.amplitude_m);
