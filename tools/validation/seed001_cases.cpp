@@ -32,6 +32,10 @@ std::string Describe(const WhirlClassification& w) {
 //    same at 1 us) needs a 10 N m drag plus a 0.1 mm TDB offset, which delays the base spin-up
 //    to 0.8 s; Ieq 1e-2 gives only the tail of a decaying BWM, with a 0.55 s spin-up. Both leave
 //    seed 000's rig (dry TDBs: M1 ~ 0.14 N m at rest), so the config keeps it;
+//  - no support damping at all does not change it: ccrd 0 and eta 0 with mu 0.35 or 0.5 rock
+//    (peaks 2.6-3.8e4 N), and so do a grease drag Phi 0.005-0.015 N m s (3.4-10 N m at full
+//    speed) with or without a 0.1 mm TDB offset, and the slip taken from the spins alone: the
+//    race (Ieq 2.2e-3) catches up with the journal within 0.06-0.1 s, and from then on rolls;
 //  - at 5 us the arctan friction (vref 200 s/m) on the 0.4 kg inner race is past RK4's limit for
 //    normal loads above ~5 kN (mu 0.35): its sign flips between RK stages (t = 0.25 s, Ieq 1e-2:
 //    +5.4 kN at the step, -5.7 kN at the half step); the rig's, the 10 N m and the Ieq 1e-2
