@@ -57,7 +57,8 @@ inline double SurfaceSlip(const TdbParams& p, const JournalMotion& j, const Cont
 }
 
 /// Slip of the journal's spin surface speed over the race's, whirl left out (m/s, along +spin):
-/// Chen 2019 (seed 002) Eq. (9)-(10), vs - vi with vs = omega_s Rs, vi = omega_i Ri.
+/// Chen 2019 (seed 002) Eq. (9)-(10), vs - vi with vs = omega_s Rs, vi = omega_i Ri. (SurfaceSlip
+/// does not call it: its sum keeps its order, and every run its bits.)
 inline double SpinSurfaceSlip(const TdbParams& p, const JournalMotion& j,
                               double race_speed_rad_s) noexcept {
   const double inner_race_radius_m = p.journal_radius_m + p.clearance_m;
