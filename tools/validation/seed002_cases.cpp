@@ -41,11 +41,12 @@ constexpr double kTdbAirGap_m = 1e-4;
 // ambdrop's halve. The whirl is fed while the race spins up, which lasts in proportion to the
 // speed. Over 96 sets of the unpublished values (mu 0.25-0.4, race inertia 1e-4 to 3e-4 kg m^2,
 // Cb 1320 or 3300 N s/m, L 6.5 or 13 mm, the slip as in Eq. (9)-(10) or at the contact point;
-// medians over 8 phases) the 18 000 / 10 000 rpm ratio is 1.5-4.6 (median 1.95; the paper's
-// 1.10 and 1.24) and no set puts all six peaks within 25 % (the best, 5 of 6 at mu 0.3 and
-// 1.5e-4 kg m^2, takes the journal to 1.95e-4 m of the 2e-4 m bound). Taking the slip from the
-// spins alone, as Eq. (9)-(10) print it (friction.slip_speeds = "spin_only"), moves the medians
-// by 3 % (the median over the 48 pairs; up to 26 % where mu 0.25 leaves the whirl on the edge).
+// medians over 8 phases; tools/bench/seed002_grid.py) the 18 000 / 10 000 rpm ratio is 1.5-4.6
+// (median 1.95; the paper's 1.10 and 1.24) and no set puts all six peaks within 25 % (the best, 5
+// of 6 at mu 0.3 and 1.5e-4 kg m^2, takes the journal to 1.95e-4 m of the 2e-4 m bound). Taking the
+// slip from the spins alone, as Eq. (9)-(10) print it (friction.slip_speeds = "spin_only"), moves
+// the medians by 3 % (the median over the 48 pairs; up to 26 % where mu 0.25 leaves the whirl on
+// the edge).
 constexpr const char* kPeakKnownFailure =
     "issue 5: friction-fed backward whirl (un-lubricated mu 0.3, the race's spin inertia) gives "
     "the paper's peaks at 18 000 rpm, but they halve by 10 000 rpm where the paper's fall 9-19 %: "
