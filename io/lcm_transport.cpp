@@ -8,6 +8,7 @@
 #include <ambdrop_lcm/trigger_t.hpp>
 #include <climits>
 #include <cmath>
+#include <cstring>
 #include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
 #include <utility>
@@ -121,6 +122,17 @@ void LcmEndpoint::Start() {
   NameThread(&receive_thread_, "ambdrop-lcm-rx");
   NameThread(&publish_thread_, "ambdrop-lcm-tx");
   running_ = true;
+}
+
+std::string LcmEndpoint::RaiseIoThreads(int priority) {
+  if (!running_) return "the endpoint is not started";
+  sched_param param{};
+  param.sched_priority = priority;
+  for (std::thread* t : {&receive_thread_, &publish_thread_}) {
+    const int error = pthread_setschedparam(t->native_handle(), SCHED_FIFO, &param);
+    if (error != 0) return std::string("SCHED_FIFO refused: ") + std::strerror(error);
+  }
+  return {};
 }
 
 void LcmEndpoint::Stop() noexcept {

@@ -88,6 +88,11 @@ class LcmEndpoint {
   void Start();
   /// Publishes the records already pushed, then joins both threads. Idempotent.
   void Stop() noexcept;
+  /// Runs the receive and publish threads under SCHED_FIFO at `priority` (1-99), after
+  /// Start(). A real-time loop's messages pass through them: left to the ordinary scheduler, a
+  /// busy machine holds the controller's answers back past the loop's watchdog. Returns an
+  /// empty string, or why the kernel refused.
+  std::string RaiseIoThreads(int priority);
   bool running() const noexcept { return running_; }
 
   // --- Real-time side ---------------------------------------------------------------------

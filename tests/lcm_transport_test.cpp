@@ -2,6 +2,7 @@
 // tests touch no network): currents and triggers in, sensors and state out, malformed messages
 // counted and dropped, full rings counted, and a real-time side that never allocates.
 #include <gtest/gtest.h>
+#include <sched.h>
 
 #include <ambdrop_lcm/amb_currents_t.hpp>
 #include <ambdrop_lcm/emulator_state_t.hpp>
@@ -10,11 +11,17 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <sstream>
 #include <stdexcept>
+#include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <lcm/lcm-cpp.hpp>
@@ -431,6 +438,42 @@ TEST(LcmEndpoint, RealTimeSideDoesNotAllocate) {
   EXPECT_EQ(allocations, 0);
   EXPECT_GT(popped, 0);
   EXPECT_GT(endpoint->counters().sensors_published, 0u);
+}
+
+// Scheduling policy (field 41) and real-time priority (field 40) of this process's thread
+// named `name`, from /proc/self/task/TID/stat; {-1, -1} when there is no such thread.
+std::pair<int, int> ThreadPolicyAndPriority(const std::string& name) {
+  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
+    std::ifstream comm(task.path() / "comm");
+    std::string thread_name;
+    std::getline(comm, thread_name);
+    if (thread_name != name) continue;
+    std::ifstream stat_file(task.path() / "stat");
+    const std::string stat((std::istreambuf_iterator<char>(stat_file)),
+                           std::istreambuf_iterator<char>());
+    std::istringstream fields(stat.substr(stat.rfind(')') + 2));  // field 3 on
+    std::vector<std::string> f{std::istream_iterator<std::string>(fields), {}};
+    if (f.size() < 39) return {-1, -1};
+    return {std::stoi(f[41 - 3]), std::stoi(f[40 - 3])};
+  }
+  return {-1, -1};
+}
+
+TEST(LcmEndpoint, IoThreadsRunUnderSchedFifoWhenRaised) {
+  auto endpoint = MakeEndpoint();
+  EXPECT_NE(endpoint->RaiseIoThreads(10), "");  // no threads before Start
+  endpoint->Start();
+  const std::string refused = endpoint->RaiseIoThreads(10);
+  if (!refused.empty()) {
+    endpoint->Stop();
+    GTEST_SKIP() << "SCHED_FIFO needs root or CAP_SYS_NICE here: " << refused;
+  }
+  for (const char* name : {"ambdrop-lcm-rx", "ambdrop-lcm-tx"}) {
+    const auto [policy, priority] = ThreadPolicyAndPriority(name);
+    EXPECT_EQ(policy, SCHED_FIFO) << name;
+    EXPECT_EQ(priority, 10) << name;
+  }
+  endpoint->Stop();
 }
 
 TEST(LcmEndpoint, RejectsBadSetup) {

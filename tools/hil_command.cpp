@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <exception>
@@ -175,6 +176,11 @@ int RunHilCommand(const HilCommandOptions& options) {
       if (!options.virtual_clock) {
         LinuxRtSystem system;
         grant = RequestRealtime(system, rt_request);
+        if (grant.fifo && links.lcm) {
+          // Just below the loop: the LCM threads carry its sensor samples and the answers.
+          const std::string refused = links.lcm->RaiseIoThreads(std::max(1, grant.priority - 1));
+          if (!refused.empty()) grant.warnings.push_back("LCM I/O threads: " + refused);
+        }
         const auto throttling = ReadRtThrottling();
         if (grant.fifo && throttling) {
           throttling_warning = RtThrottlingWarning(spin_ns, period_ns, *throttling);
