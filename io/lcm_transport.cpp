@@ -1,6 +1,8 @@
 #include "io/lcm_transport.hpp"
 
 #include <pthread.h>
+#include <sched.h>
+#include <unistd.h>
 
 #include <ambdrop_lcm/amb_currents_t.hpp>
 #include <ambdrop_lcm/emulator_state_t.hpp>
@@ -124,11 +126,26 @@ void LcmEndpoint::Start() {
   running_ = true;
 }
 
-std::string LcmEndpoint::RaiseIoThreads(int priority) {
+std::string LcmEndpoint::RaiseIoThreads(int priority, int loop_cpu) {
   if (!running_) return "the endpoint is not started";
+  // Off the loop's CPU: a saturated loop there would starve them, and the kernel's RT
+  // throttling, counted per CPU, would stop them with it.
+  cpu_set_t others;
+  CPU_ZERO(&others);
+  const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+  for (int c = 0; c < cpus && c < CPU_SETSIZE; ++c) {
+    if (c != loop_cpu) CPU_SET(c, &others);
+  }
+  const bool move = loop_cpu >= 0 && CPU_COUNT(&others) > 0;
   sched_param param{};
   param.sched_priority = priority;
   for (std::thread* t : {&receive_thread_, &publish_thread_}) {
+    if (move) {
+      const int error = pthread_setaffinity_np(t->native_handle(), sizeof(others), &others);
+      if (error != 0)
+        return std::string("moving off CPU ") + std::to_string(loop_cpu) +
+               " refused: " + std::strerror(error);
+    }
     const int error = pthread_setschedparam(t->native_handle(), SCHED_FIFO, &param);
     if (error != 0) return std::string("SCHED_FIFO refused: ") + std::strerror(error);
   }

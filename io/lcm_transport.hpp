@@ -89,10 +89,11 @@ class LcmEndpoint {
   /// Publishes the records already pushed, then joins both threads. Idempotent.
   void Stop() noexcept;
   /// Runs the receive and publish threads under SCHED_FIFO at `priority` (1-99), after
-  /// Start(). A real-time loop's messages pass through them: left to the ordinary scheduler, a
-  /// busy machine holds the controller's answers back past the loop's watchdog. Returns an
-  /// empty string, or why the kernel refused.
-  std::string RaiseIoThreads(int priority);
+  /// Start(), and, when the real-time loop is pinned to `loop_cpu` (>= 0), on the other CPUs. A
+  /// real-time loop's messages pass through them: left to the ordinary scheduler, a busy
+  /// machine holds the controller's answers back past the loop's watchdog. Returns an empty
+  /// string, or why the kernel refused.
+  std::string RaiseIoThreads(int priority, int loop_cpu = -1);
   bool running() const noexcept { return running_; }
 
   // --- Real-time side ---------------------------------------------------------------------

@@ -179,6 +179,11 @@ int main(int argc, char** argv) {
                    "trips the kernel's RT throttling")
       ->type_name("US")
       ->check(CLI::Range(0.0, 10000.0));
+  hil_command->add_flag(
+      "--lcm-io-fifo", hil.lcm_io_fifo,
+      "With --controller lcm and SCHED_FIFO: run LCM's receive and publish threads SCHED_FIFO one "
+      "priority below the loop, off its CPU, so a busy host does not hold the controller's "
+      "answers back (at 20 kHz they then fall under the kernel's RT throttling: slower)");
   hil_command->add_flag("--enforce-rt", hil.enforce_rt,
                         "Fail if real-time scheduling, CPU pinning or memory locking is refused "
                         "(also realtime.enforce)");

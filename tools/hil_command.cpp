@@ -176,9 +176,10 @@ int RunHilCommand(const HilCommandOptions& options) {
       if (!options.virtual_clock) {
         LinuxRtSystem system;
         grant = RequestRealtime(system, rt_request);
-        if (grant.fifo && links.lcm) {
+        if (options.lcm_io_fifo && grant.fifo && links.lcm) {
           // Just below the loop: the LCM threads carry its sensor samples and the answers.
-          const std::string refused = links.lcm->RaiseIoThreads(std::max(1, grant.priority - 1));
+          const std::string refused = links.lcm->RaiseIoThreads(std::max(1, grant.priority - 1),
+                                                                grant.pinned ? grant.cpu : -1);
           if (!refused.empty()) grant.warnings.push_back("LCM I/O threads: " + refused);
         }
         const auto throttling = ReadRtThrottling();

@@ -14,6 +14,8 @@ struct HilCommandOptions {
   int rt_priority = 0;                  ///< SCHED_FIFO priority; 0: normal scheduling
   int cpu = -1;                         ///< pin the loop thread; -1: any
   bool enforce_rt = false;              ///< a refused real-time request is an error
+  /// LCM's receive and publish threads SCHED_FIFO one below the loop, off its CPU.
+  bool lcm_io_fifo = false;
   double watchdog_timeout_s = 5e-3;
   std::string silence_action = "hold";  ///< hold | zero | stop
   bool quiet = false;

@@ -4,7 +4,8 @@
 # trigger drops it, and the drop matches the offline replay of the recorded inputs bit for bit
 # (`ambdrop replay` of the run's --record; replay exits 3 on any difference); and at 20 kHz in
 # lock step on the virtual clock (--lockstep) the run is `ambdrop sim`'s, byte for byte. LCM's udpm round trip here (~60-120 us) does not fit a 20 kHz lockstep, so the
-# loop runs at 2 kHz. Usage: hil_lcm_netns.sh AMBDROP_BINARY SOURCE_DIR; exit 77 = skipped.
+# loop runs at 2 kHz, with LCM's I/O threads real-time too (--lcm-io-fifo): without, a busy host
+# held the controller's answers back past the watchdog. Usage: hil_lcm_netns.sh AMBDROP_BINARY SOURCE_DIR; exit 77 = skipped.
 set -euo pipefail
 tool=$1
 source_dir=$2
@@ -25,7 +26,7 @@ unshare -n bash -c "
   '$controller' '$config' ${sets[*]} --idle-exit-s 1 > '$work/controller.log' 2>&1 &
   sleep 0.5
   '$tool' hil '$config' --controller lcm ${sets[*]} --set simulation.duration_s=0.4 \
-    --rt-priority 80 --out '$work/out' --record '$work/run.lcm' --quiet
+    --rt-priority 80 --lcm-io-fifo --out '$work/out' --record '$work/run.lcm' --quiet
   wait
   # 20 kHz in lock step on the virtual clock: the same controller process answers every sample.
   '$controller' '$config' --idle-exit-s 1 > '$work/controller20k.log' 2>&1 &
