@@ -71,10 +71,10 @@ OfflineDrop Drop(const std::string& config, double rpm, bool support) {
         0.1));
   }
   OfflineDrop d = runs.front();
+  for (const OfflineDrop& r : runs) d.ok = d.ok && r.ok;
   for (std::size_t t = 0; t < d.tdbs.size(); ++t) {
     std::vector<double> normal, late, support_N;
     for (const OfflineDrop& r : runs) {
-      d.ok = d.ok && r.ok;
       normal.push_back(r.tdbs[t].normal_N);
       late.push_back(r.tdbs[t].late_normal_N);
       support_N.push_back(r.tdbs[t].support_N);
