@@ -11,7 +11,7 @@ namespace ambdrop {
 ReplayResult ReplayRun(const Model& model, const RecordedRun& run,
                        const std::function<void(const Observation&)>& on_output,
                        const std::function<void(const RecordedSensors&)>& on_sensors,
-                       const std::function<void(double)>& on_progress) {
+                       const std::function<void(double)>& on_progress, RunRecorder* observer) {
   const double dt = model.params.simulation.step_s;
   Simulator sim(model);
   std::optional<SensorEmulator> sensors;
@@ -38,11 +38,14 @@ ReplayResult ReplayRun(const Model& model, const RecordedRun& run,
     sample.time_s = obs.time_s;
     sensors->Sample(obs, &sample.readings);
     if (on_sensors) on_sensors(sample);
+    if (observer != nullptr) observer->OnSensors(sample);
   };
-  if (on_output) {
+  const auto output = [&] {
     sim.Observe(state, &obs);
-    on_output(obs);
-  }
+    if (on_output) on_output(obs);
+    if (observer != nullptr) observer->OnState(state, obs);
+  };
+  if (on_output || observer != nullptr) output();
   std::size_t next_input = 0;
   std::size_t next_power = 0;
   while (state.step_index < end) {
@@ -80,10 +83,7 @@ ReplayResult ReplayRun(const Model& model, const RecordedRun& run,
       result.failure_message = DescribeFailure(model, status, state);
       break;
     }
-    if (on_output && state.step_index % output_every == 0) {
-      sim.Observe(state, &obs);
-      on_output(obs);
-    }
+    if ((on_output || observer != nullptr) && state.step_index % output_every == 0) output();
     if (on_progress && state.step_index % progress_every == 0) {
       on_progress(static_cast<double>(state.step_index) / static_cast<double>(end));
     }

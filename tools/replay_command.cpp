@@ -17,6 +17,7 @@
 #include "tools/record/profile_export.hpp"
 #include "tools/record/run_record_reader.hpp"
 #include "tools/record/sensor_diff.hpp"
+#include "tools/record/trajectory_hasher.hpp"
 #include "tools/run_summary.hpp"
 #include "tools/tdb_summary_json.hpp"
 
@@ -148,6 +149,8 @@ int RunReplayCommand(const ReplayOptions& options) {
   SensorDiff diff(record.sensors, sensor_names);
   RunSummary summary(model->params);
   std::string output_error;
+  TrajectoryHasher hasher(model->params.sensors.size());
+  hasher.HashSensorsUpTo(record.sensors.empty() ? -1 : record.sensors.back().step);
   const auto start = std::chrono::steady_clock::now();
   const ReplayResult result = ReplayRun(
       *model, record.run,
@@ -160,7 +163,7 @@ int RunReplayCommand(const ReplayOptions& options) {
           output_error = e.what();
         }
       },
-      [&](const RecordedSensors& s) { diff.Add(s); });
+      [&](const RecordedSensors& s) { diff.Add(s); }, {}, &hasher);
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   try {
@@ -182,6 +185,7 @@ int RunReplayCommand(const ReplayOptions& options) {
   json.Key("steps").Integer(result.steps);
   json.Key("damaged").Bool(record.damaged);
   json.Key("wall_time_s").Number(wall_s);
+  json.Key("trajectory_hash").String(hasher.Hex());
   json.Key("replay").BeginObject();
   diff.WriteJson(json, dt);
   json.EndObject();

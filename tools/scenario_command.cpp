@@ -18,6 +18,7 @@
 #include "io/timeseries_csv.hpp"
 #include "tools/exit_codes.hpp"
 #include "tools/record/run_record_writer.hpp"
+#include "tools/record/trajectory_hasher.hpp"
 #include "tools/run_summary.hpp"
 #include "tools/scenario_outcome.hpp"
 #include "tools/tdb_summary_json.hpp"
@@ -113,7 +114,8 @@ int RunScenarioCommand(const SimOptions& options) {
   if (profile_driven) hil.initial_input = &profile_start;
   hil.watchdog_timeout_s = scenario.watchdog_timeout_s;
   hil.silence_action = ParseSilenceAction(scenario.silence_action);
-  hil.recorder = recorder.get();
+  TrajectoryHasher hasher(model->params.sensors.size(), recorder.get());
+  hil.recorder = &hasher;
   auto outputs = std::make_unique<HilSession::OutputRing>();
   HilSession session(*model, &link, triggers, hil, outputs.get());
   RunSummary summary(model->params);
@@ -149,6 +151,7 @@ int RunScenarioCommand(const SimOptions& options) {
   json.Key("power_events").Integer(session.counters().power_events);
   json.Key("watchdog_silence_episodes").Integer(session.watchdog().silence_episodes());
   json.Key("currents_swallowed").Integer(link.messages_swallowed());
+  json.Key("trajectory_hash").String(hasher.Hex());
   json.Key("scenario").BeginObject();
   json.Key("description").String(scenario.description);
   json.Key("relevitated").Bool(outcome.relevitated());

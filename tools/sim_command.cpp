@@ -24,6 +24,7 @@
 #include "tools/exit_codes.hpp"
 #include "tools/progress_bar.hpp"
 #include "tools/record/run_record_writer.hpp"
+#include "tools/record/trajectory_hasher.hpp"
 #include "tools/run_summary.hpp"
 #include "tools/scenario_command.hpp"
 #include "tools/tdb_summary_json.hpp"
@@ -44,6 +45,7 @@ struct RunStatistics {
   double wall_time_s = 0.0;
   std::optional<double> trigger_time_s;
   double final_spin_speed_rad_s = 0.0;
+  std::string trajectory_hash;
 
   double simulated_time_s() const { return static_cast<double>(steps) * step_s; }
   double realtime_factor() const {
@@ -84,6 +86,7 @@ std::string SummaryJson(const RunStatistics& run, const RunSummary& summary) {
   json.Key("trigger_time_s").Number(run.trigger_time_s);
   json.Key("final_spin_speed_rad_s").Number(run.final_spin_speed_rad_s);
   json.Key("observations").Integer(summary.observations());
+  json.Key("trajectory_hash").String(run.trajectory_hash);
   WriteTdbSummaries(json, summary);
   json.EndObject();
   return json.str();
@@ -185,7 +188,8 @@ int RunSimCommand(const SimOptions& options) {
   const auto on_progress = [&](double fraction) { progress.Update(fraction); };
 
   const auto start = std::chrono::steady_clock::now();
-  const OfflineRunResult result = RunOffline(*model, on_output, on_progress, recorder.get());
+  TrajectoryHasher hasher(model->params.sensors.size(), recorder.get());
+  const OfflineRunResult result = RunOffline(*model, on_output, on_progress, &hasher);
   const auto stop = std::chrono::steady_clock::now();
   progress.Finish();
 
@@ -197,6 +201,7 @@ int RunSimCommand(const SimOptions& options) {
   run.steps = result.steps;
   run.step_s = model->params.simulation.step_s;
   run.wall_time_s = std::chrono::duration<double>(stop - start).count();
+  run.trajectory_hash = hasher.Hex();
   if (model->params.trigger.enabled) run.trigger_time_s = model->params.trigger.time_s;
   // The final state is exact even when the duration is not a multiple of the output interval;
   // the last observation is the fallback should a failed run leave no state.
