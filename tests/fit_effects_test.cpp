@@ -370,6 +370,40 @@ TEST(FitVerdicts, EquallyGoodEffectsOfAnotherFamilyAreNamed) {
   EXPECT_NE(s.reason.find("cannot tell them apart"), std::string::npos) << s.reason;
 }
 
+TEST(FitVerdicts, FittedPairsAreReportedAsTried) {
+  // Both TDBs offset: no single offset explains the record, so pairs are fitted. Each pair
+  // fitted must say so (fit.json's "tried", report.md's row), with the residual it reached.
+  std::vector<std::string> truth = Timing();
+  for (const char* o : {"simulation.step_s=2.5e-6", "tdb.de.misalignment.enabled=true",
+                        "tdb.de.misalignment.x_m=2e-5", "tdb.de.misalignment.y_m=-4e-5",
+                        "tdb.nde.misalignment.enabled=true", "tdb.nde.misalignment.x_m=-3e-5",
+                        "tdb.nde.misalignment.y_m=-3e-5"}) {
+    truth.push_back(o);
+  }
+  MeasureOptions noise;
+  noise.current_noise_A = 0.005;
+  const SyntheticMeasurement made = MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), noise);
+  const ModelParams declared = testing::LoadTestConfig(kRig, Timing());
+  const RecordCost cost(declared, made.measurement, made.record, RecordRunOptions{});
+  std::vector<Effect> library;
+  for (const Effect& e : EffectLibrary(declared)) {
+    if (e.family == "tdb_misalignment" || e.name == "amb_flux_decay") library.push_back(e);
+  }
+  ASSERT_EQ(library.size(), 3u);
+  SelectionRules rules;
+  rules.threads = 2;
+  const Selection s = SelectEffects(cost, library, cost.NoiseFloor(), rules);
+  ASSERT_EQ(s.chosen.size(), 2u) << s.reason;
+  std::size_t pairs = 0;
+  for (const CandidateScore& c : s.candidates) {
+    if (c.name.find(" + ") == std::string::npos) continue;
+    ++pairs;
+    EXPECT_TRUE(c.tried) << c.name;
+    EXPECT_TRUE(std::isfinite(c.rms_after)) << c.name;
+  }
+  EXPECT_EQ(pairs, 2u);
+}
+
 TEST(FitVerdicts, AnEffectOutsideTheLibraryIsNotClaimedExplained) {
   // A rotor 8 % heavier than declared: no effect of the library changes the rotor's mass.
   const Fitted f = FitTruth({"rotor.materials.steel.density_kg_m3=8478"});

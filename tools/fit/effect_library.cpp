@@ -372,7 +372,9 @@ Effect TdbDrag(const TdbParams& t) {
   e.name = "tdb_drag_torque:" + name;
   e.family = "tdb_drag_torque";
   e.description = fmt::format("constant drag torque on TDB {}'s inner race (seals, windage)", name);
-  e.parameters = {{"drag_torque_N_m", 0.0, 5.0, {0.0, 0.05, 0.5}}};
+  // A size from 0 over decades: the chaos guard's nudge is a thousandth of the value, not of the
+  // 5 N m range (that nudge, 5 mN m, was five times a fitted 0.92 mN m drag).
+  e.parameters = {{"drag_torque_N_m", 0.0, 5.0, {0.0, 0.05, 0.5}, false, 0.0, true}};
   e.revealed_by = {Q::kTdbSpeed, Q::kDisplacement, Q::kRotorSpeed};
   e.probe = {2.0};
   e.apply = [name](const std::vector<double>& v, ModelParams* p) {

@@ -191,6 +191,7 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
           c.name = first.name + " + " + second.name;
           c.family = first.family + " + " + second.family;
           c.description = first.description + "; " + second.description;
+          c.tried = true;
           // From where each fitted best alone: the first there only, the second (if among the
           // best few) also from its own starts: alone it may have settled for what the first
           // explains better.
