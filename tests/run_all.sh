@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# Every test of ambdrop, as CI runs them: the README's test command ends with this script, and
+# .ci/run runs that command. The jobs run one after another (CI has 2 cores and 30 minutes for
+# all of them); each prints "ok" or "FAILED" with its time, and the exit code is non-zero when
+# any job failed, so a CI job can be built on it. Run one job alone with its name as argument:
+#   tests/run_all.sh [format|release|asan|tsan]...
+set -uo pipefail
+cd "$(dirname "$0")/.."
+cores=$(nproc)
+failed=()
+declare -A took
+
+run_job() {
+  local name=$1
+  shift
+  local start=$SECONDS
+  echo "=== $name"
+  if "$@"; then
+    took[$name]="ok, $((SECONDS - start)) s"
+  else
+    took[$name]="FAILED, $((SECONDS - start)) s"
+    failed+=("$name")
+  fi
+  echo "=== $name: ${took[$name]}"
+}
+
+# The tree is clang-format-14 clean; another version formats a few constructs differently.
+format_check() {
+  find rt_core io controller_if tools tests \( -name '*.cpp' -o -name '*.hpp' \) -print0 |
+    xargs -0 clang-format-14 --dry-run --Werror
+}
+
+# The build users get: Release, warnings as errors, every test (validation, golden hashes, the
+# hw tests in the qemu VM) but no benchmarks.
+release() {
+  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DAMBDROP_WERROR=ON \
+    -DAMBDROP_BUILD_BENCHMARKS=OFF &&
+    cmake --build build &&
+    ctest --test-dir build --output-on-failure -j "$cores"
+}
+
+# ASan+UBSan at -O1 with asserts on (tests/CMakeLists.txt lists what it runs). No -Werror: GCC 12
+# warns falsely under the sanitizers.
+asan() {
+  cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
+    -DAMBDROP_SANITIZE=ON -DAMBDROP_BUILD_BENCHMARKS=OFF &&
+    cmake --build build-asan &&
+    ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
+      ctest --test-dir build-asan --output-on-failure -j "$cores"
+}
+
+# TSan at -O1 on the threaded tests only; the tools are not built.
+tsan() {
+  cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
+    -DAMBDROP_TSAN=ON -DAMBDROP_BUILD_BENCHMARKS=OFF &&
+    cmake --build build-tsan --target ambdrop_test_programs &&
+    ctest --test-dir build-tsan --output-on-failure -j "$cores"
+}
+
+selected=("$@")
+[[ ${#selected[@]} -gt 0 ]] || selected=(format release asan tsan)
+for job in "${selected[@]}"; do
+  case $job in
+    format) run_job format format_check ;;
+    release) run_job release release ;;
+    asan) run_job asan asan ;;
+    tsan) run_job tsan tsan ;;
+    *)
+      echo "unknown job '$job' (expected format, release, asan or tsan)" >&2
+      exit 64
+      ;;
+  esac
+done
+
+echo "=== summary (${SECONDS} s in all)"
+for job in "${selected[@]}"; do echo "  $job: ${took[$job]}"; done
+if [[ ${#failed[@]} -gt 0 ]]; then
+  echo "FAILED: ${failed[*]}"
+  exit 1
+fi
+echo "all jobs ok"
