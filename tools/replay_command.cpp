@@ -124,6 +124,15 @@ int RunReplayCommand(const ReplayOptions& options) {
       return kExitError;
     }
   }
+  // The record's end is bounded by its header; a config given here may be shorter (as the
+  // candump path bounds it by the config too).
+  if (record.run.end_step > model->total_steps) {
+    fmt::print(stderr,
+               "warning: the record ends at step {}, beyond the config's {} steps: the replay "
+               "stops there\n",
+               record.run.end_step, model->total_steps);
+    record.run.end_step = model->total_steps;
+  }
   if (model->params.simulation.step_s != record.header.step_s) {
     fmt::print(stderr,
                "error: the config's simulation.step_s ({} s) differs from the record's ({} s): "

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "controller_if/current_profile.hpp"
@@ -102,7 +103,9 @@ ProfileExport ExportCurrentProfile(const RunRecordFile& record, const std::strin
   const int ambs = static_cast<int>(params.ambs.size());
   if (ambs == 0) throw std::runtime_error(record_path + ": the recorded rig has no AMB");
   const std::size_t max_points = std::clamp<std::size_t>(window.max_points, 2, kMaxProfilePoints);
-  const std::int64_t end = record.run.end_step;
+  // The record's end is bounded by its header; its config bounds it too.
+  const std::int64_t end =
+      std::min<std::int64_t>(record.run.end_step, std::llround(params.simulation.duration_s / dt));
   const std::int64_t from = std::llround(window.from_s / dt);
   const std::int64_t to = window.to_s < 0.0 ? end : std::llround(window.to_s / dt);
   if (from < 0 || to > end || to <= from) {

@@ -1,6 +1,9 @@
 #include "tools/record/run_record_reader.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "ambdrop_lcm/emulator_state_t.hpp"
@@ -23,6 +26,12 @@ bool Decode(const LogEvent& event, Message* out) {
   return n == static_cast<int>(event.data.size());
 }
 
+// A header whose numbers could not come from a run: a replay would divide by them or loop on them.
+bool HeaderSound(const ambdrop_lcm::record_header_t& h) {
+  return std::isfinite(h.step_s) && h.step_s > 0.0 && h.total_steps >= 0 &&
+         h.sensor_every_steps >= 0 && h.output_every_steps >= 1;
+}
+
 std::string At(const LogEvent& e) {
   return "event " + std::to_string(e.number) + " at byte " + std::to_string(e.offset);
 }
@@ -37,6 +46,13 @@ class Builder {
     if (ch == kRecHeaderChannel) {
       ambdrop_lcm::record_header_t h{};
       if (!Decode(e, &h)) return Bad(e, "header");
+      if (!HeaderSound(h)) {
+        return Bad(
+            e, "header",
+            fmt::format("step_s {}, total_steps {}, sensor_every_steps {}, "
+                        "output_every_steps {} cannot come from a run",
+                        h.step_s, h.total_steps, h.sensor_every_steps, h.output_every_steps));
+      }
       RecordHeader& r = file_->header;
       r.ambdrop_version = h.ambdrop_version;
       r.source = h.source;
@@ -136,15 +152,24 @@ class Builder {
   std::int64_t last_step() const { return last_step_; }
 
  private:
-  bool Bad(const LogEvent& e, const char* what) {
-    file_->warnings.push_back(At(e) + ": the " + std::string(what) +
-                              " message does not decode; the record is used up to it");
+  bool Bad(const LogEvent& e, const char* what, const std::string& why = "does not decode") {
+    file_->damaged = true;
+    file_->warnings.push_back(At(e) + ": the " + std::string(what) + " message " + why +
+                              "; the record is used up to it");
     return false;
   }
   bool InOrder(const LogEvent& e, std::int64_t step) {
     if (step < 0 || step < last_step_) {
       file_->warnings.push_back(At(e) + ": step " + std::to_string(step) +
                                 " goes back in time; the record is used up to it");
+      return false;
+    }
+    // An event past the configured end cannot come from the run; a replay would run to it.
+    if (step > file_->header.total_steps) {
+      file_->damaged = true;
+      file_->warnings.push_back(
+          At(e) + ": step " + std::to_string(step) + " is beyond the run's configured " +
+          std::to_string(file_->header.total_steps) + " steps; the record is used up to it");
       return false;
     }
     last_step_ = step;
@@ -243,6 +268,14 @@ RunRecordFile ReadRunRecord(const std::filesystem::path& path) {
   }
   if (!builder.has_start()) {
     throw std::runtime_error(path.string() + ": the record holds no start event");
+  }
+  const bool footer_in_range = file.footer && file.footer->final_step >= builder.last_step() &&
+                               file.footer->final_step <= file.header.total_steps;
+  if (file.footer && !file.damaged && !footer_in_range) {
+    file.damaged = true;
+    file.warnings.push_back(fmt::format(
+        "the footer's final step {} is outside the recorded steps {}..{}: it is not used",
+        file.footer->final_step, builder.last_step(), file.header.total_steps));
   }
   if (file.footer && !file.damaged) {
     file.run.end_step = file.footer->final_step;
