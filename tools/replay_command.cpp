@@ -99,6 +99,7 @@ int RunReplayCommand(const ReplayOptions& options) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitConfig;
   }
+  std::optional<CandumpRecord> dump;  // its counts go into summary.json
   if (candump) {
     if (!config.can) {
       fmt::print(stderr, "error: {}: no [can] table to read the candump log with\n",
@@ -106,17 +107,20 @@ int RunReplayCommand(const ReplayOptions& options) {
       return kExitConfig;
     }
     try {
-      CandumpRecord dump = ReadCandumpRecord(options.record_path, *model, *config.can);
-      for (const std::string& w : dump.warnings) fmt::print(stderr, "warning: {}\n", w);
+      dump = ReadCandumpRecord(options.record_path, *model, *config.can);
+      for (const std::string& w : dump->warnings) fmt::print(stderr, "warning: {}\n", w);
       if (!options.quiet) {
         fmt::print(
             "{}: {} frames, {} from the controller, {} sensor sets, {} unknown, {} "
-            "malformed lines\n",
-            options.record_path, dump.frames, dump.controller_frames, dump.sensors.size(),
-            dump.unknown_frames, dump.malformed_lines);
+            "malformed lines, {} out of order, {} after the run's end\n",
+            options.record_path, dump->frames, dump->controller_frames, dump->sensors.size(),
+            dump->unknown_frames, dump->malformed_lines, dump->out_of_order_lines,
+            dump->frames_after_end);
       }
-      record.run = std::move(dump.run);
-      record.sensors = std::move(dump.sensors);
+      record.run = std::move(dump->run);
+      record.sensors = std::move(dump->sensors);
+      record.warnings = dump->warnings;
+      record.damaged = dump->damaged();
       record.header.source = "candump";
       record.header.step_s = model->params.simulation.step_s;
     } catch (const std::exception& e) {
@@ -194,6 +198,16 @@ int RunReplayCommand(const ReplayOptions& options) {
   json.Key("replay").BeginObject();
   diff.WriteJson(json, dt);
   json.EndObject();
+  if (dump) {
+    json.Key("candump").BeginObject();
+    json.Key("frames").Integer(dump->frames);
+    json.Key("controller_frames").Integer(dump->controller_frames);
+    json.Key("unknown_frames").Integer(dump->unknown_frames);
+    json.Key("malformed_lines").Integer(dump->malformed_lines);
+    json.Key("out_of_order_lines").Integer(dump->out_of_order_lines);
+    json.Key("frames_after_end").Integer(dump->frames_after_end);
+    json.EndObject();
+  }
   json.Key("warnings").BeginArray();
   for (const std::string& w : record.warnings) json.String(w);
   json.EndArray();
