@@ -43,4 +43,22 @@ d = tomllib.load(open(sys.argv[1], "rb"))["simulation"]["duration_s"]
 assert 0 < d <= 0.05, d
 PY
 
+# D4: a string length of 0 or INT32_MIN in the header or the footer, the integrity checks
+# recomputed so that only the reader's own bounds can catch it. A bad header: refused, naming
+# the event and its byte. A bad footer: the record is used without it.
+python3 "$edit" run.lcm bad_header.lcm i32 AMBDROP_RECORD_HEADER 8 0 recheck
+rc=0
+"$tool" replay bad_header.lcm --out bad_header --quiet 2>bad_header.err || rc=$?
+[[ $rc -eq 1 ]] || fail "a header string of length 0: exit $rc: $(cat bad_header.err)"
+grep -q "not an ambdrop run record.*event 0 at byte 0: the header message does not decode" \
+  bad_header.err || fail "unclear error for a bad header: $(cat bad_header.err)"
+for length in 0 -2147483648; do
+  python3 "$edit" run.lcm bad_footer.lcm i32 AMBDROP_RECORD_FOOTER 8 $length recheck
+  rc=0
+  "$tool" replay bad_footer.lcm --out bad_footer --quiet 2>bad_footer.err || rc=$?
+  [[ $rc -eq 0 ]] || fail "a footer string of length $length: exit $rc: $(cat bad_footer.err)"
+  grep -q "event [0-9]* at byte [0-9]*: the footer message does not decode" bad_footer.err ||
+    fail "no warning of the bad footer: $(cat bad_footer.err)"
+done
+
 echo "hostile records: ok"
