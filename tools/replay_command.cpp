@@ -190,7 +190,17 @@ int RunReplayCommand(const ReplayOptions& options) {
   json.Key("recorded_with").String(record.header.ambdrop_version);
   json.Key("config").String(recorded_config ? "recorded" : options.config_path);
   json.Key("config_hash_recorded").String(record.header.config_hash);
-  json.Key("status").String(StatusText(result));
+  // A replay whose outputs failed is not ok, even if its physics was.
+  json.Key("status").String(result.status == StepStatus::kOk && !result.watchdog_stop &&
+                                    !output_error.empty()
+                                ? "output_error"
+                                : StatusText(result));
+  json.Key("output_error");
+  if (output_error.empty()) {
+    json.Null();
+  } else {
+    json.String(output_error);
+  }
   json.Key("recorded_status").String(record.footer ? record.footer->status : "unknown");
   json.Key("steps").Integer(result.steps);
   json.Key("damaged").Bool(record.damaged);

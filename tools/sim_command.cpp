@@ -44,6 +44,7 @@ struct RunStatistics {
   double wall_time_s = 0.0;
   std::optional<double> trigger_time_s;
   double final_spin_speed_rad_s = 0.0;
+  std::string output_error;  ///< a file the run could not write (empty: none)
 
   double simulated_time_s() const { return static_cast<double>(steps) * step_s; }
   double realtime_factor() const {
@@ -69,7 +70,16 @@ std::string SummaryJson(const RunStatistics& run, const RunSummary& summary) {
   json.BeginObject();
   json.Key("config").String(run.config_path);
   json.Key("name").String(run.name);
-  json.Key("status").String(StatusName(run.status));
+  // A run whose outputs failed is not ok, even if its physics was.
+  json.Key("status").String(run.status == StepStatus::kOk && !run.output_error.empty()
+                                ? "output_error"
+                                : StatusName(run.status));
+  json.Key("output_error");
+  if (run.output_error.empty()) {
+    json.Null();
+  } else {
+    json.String(run.output_error);
+  }
   json.Key("failure_message");
   if (run.status == StepStatus::kOk) {
     json.Null();
@@ -220,6 +230,7 @@ int RunSimCommand(const SimOptions& options) {
       if (output_error.empty()) output_error = e.what();
     }
   }
+  run.output_error = output_error;
   try {
     WriteTextFile(out_dir / "summary.json", SummaryJson(run, summary));
   } catch (const std::exception& e) {
