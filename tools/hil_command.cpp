@@ -20,6 +20,7 @@
 #include "io/timeseries_csv.hpp"
 #include "tools/exit_codes.hpp"
 #include "tools/hil_links.hpp"
+#include "tools/long_run_note.hpp"
 #include "tools/record/run_record_writer.hpp"
 #include "tools/run_summary.hpp"
 #include "tools/tdb_summary_json.hpp"
@@ -98,6 +99,8 @@ int RunHilCommand(const HilCommandOptions& options) {
     fmt::print(stderr, "error: --silence: {}\n", e.what());
     return kExitUsage;
   }
+
+  NoteLongRun(*model, !options.virtual_clock);
 
   const fs::path out_dir(options.out_dir);
   fs::create_directories(out_dir);

@@ -17,6 +17,7 @@
 #include "io/json_writer.hpp"
 #include "io/timeseries_csv.hpp"
 #include "tools/exit_codes.hpp"
+#include "tools/long_run_note.hpp"
 #include "tools/record/run_record_writer.hpp"
 #include "tools/run_summary.hpp"
 #include "tools/scenario_outcome.hpp"
@@ -59,6 +60,7 @@ int RunScenarioCommand(const SimOptions& options) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitConfig;
   }
+  NoteLongRun(*model, false);
   const ScenarioParams& scenario = *config.scenario;
   const std::int64_t substeps = ControllerSubsteps(*model);
   const double dt = model->params.simulation.step_s;

@@ -22,6 +22,7 @@
 #include "io/timeseries_csv.hpp"
 #include "rt_core/model.hpp"
 #include "tools/exit_codes.hpp"
+#include "tools/long_run_note.hpp"
 #include "tools/progress_bar.hpp"
 #include "tools/record/run_record_writer.hpp"
 #include "tools/run_summary.hpp"
@@ -146,6 +147,8 @@ int RunSimCommand(const SimOptions& options) {
     fmt::print(stderr, "error: {}: cannot build the model: {}\n", options.config_path, e.what());
     return kExitConfig;
   }
+
+  NoteLongRun(*model, false);
 
   const fs::path out_dir(options.out_dir);
   std::optional<TimeseriesCsvWriter> csv;

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Config values that cannot make a run: each is a config error (exit 2) that names the file (or
+# --set) and line, the key, the range expected and the value found; a long run is announced on
+# stderr before it starts.
+# Usage: hostile_configs.sh AMBDROP_BINARY SOURCE_DIR
+set -euo pipefail
+tool=$1
+source_dir=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() {
+  echo "FAIL: $*" >&2
+  exit 1
+}
+cd "$work"
+pid=$source_dir/configs/jarroux2019_industrial_pid.toml
+
+# Runs `ambdrop sim` on $1 with the other arguments as --set overrides; expects exit $expected_rc
+# and every pattern of "${expected[@]}" on stderr.
+expect_error() {
+  local config=$1
+  shift
+  local sets=()
+  for s in "$@"; do sets+=(--set "$s"); done
+  local rc=0
+  timeout 20 "$tool" sim "$config" "${sets[@]}" --out out -q 2>err.txt >/dev/null || rc=$?
+  [[ $rc -eq $expected_rc ]] || fail "sim $* exited $rc, not $expected_rc: $(cat err.txt)"
+  for pattern in "${expected[@]}"; do
+    grep -q -- "$pattern" err.txt || fail "sim $*: no '$pattern' in: $(cat err.txt)"
+  done
+}
+
+# D6: a duration beyond simulation.max_steps (1e300 s overflowed the step count to 0 steps and
+# exited 0), and a lowered ceiling.
+expected_rc=2
+expected=("--set simulation.duration_s=1e300: key 'simulation.duration_s': expected simulation.duration_s <= 5000 s: at most simulation.max_steps = 1000000000 steps" "found duration_s = 1e+300 s")
+expect_error "$pid" simulation.duration_s=1e300
+expected=("key 'simulation.duration_s'" "max_steps = 1000 steps")
+expect_error "$pid" simulation.duration_s=0.05 simulation.max_steps=1000
+expected=("key 'simulation.max_steps': expected an integer in \[1, ")
+expect_error "$pid" simulation.max_steps=0
+# A long run says so before it starts (stopped at once: only the note is wanted).
+rc=0
+timeout 5 "$tool" sim "$pid" --set simulation.duration_s=2000 --set simulation.output_interval_s=1 \
+  --out long -q 2>long.err >/dev/null || rc=$?
+[[ $rc -eq 124 ]] || fail "a 2000 s run ended within 5 s (exit $rc): $(cat long.err)"
+grep -q "note: a long run: 400000000 steps of 5e-06 s (2000 s simulated) take roughly" long.err ||
+  fail "no note before a long run: $(cat long.err)"
+
+echo "hostile configs: ok"
