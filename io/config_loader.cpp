@@ -40,10 +40,11 @@ ModelParams ReadModel(const TableReader& root) {
   const config_detail::AxialRange position = config_detail::ShaftRange(params.rotor);
   params.bearings = config_detail::ReadBearings(root, position);
   params.ambs = config_detail::ReadAmbs(root, position);
-  params.sensors = config_detail::ReadSensors(root, position);
+  // Before the sensors: they are sampled at its rate.
+  params.controller = config_detail::ReadController(root);
+  params.sensors = config_detail::ReadSensors(root, position, 1.0 / params.controller.rate_Hz);
   params.tdbs = config_detail::ReadTdbs(root, position);
   params.unbalances = config_detail::ReadUnbalances(root, position);
-  params.controller = config_detail::ReadController(root);
   return params;
 }
 

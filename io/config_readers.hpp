@@ -28,7 +28,9 @@ double ReadAxialPosition(const TableReader& table, const AxialRange& range);
 
 std::vector<LinearBearingParams> ReadBearings(const TableReader& root, const AxialRange& position);
 std::vector<AmbParams> ReadAmbs(const TableReader& root, const AxialRange& position);
-std::vector<SensorParams> ReadSensors(const TableReader& root, const AxialRange& position);
+/// `sample_period_s`: the controller's period, at which the sensors are sampled (it bounds a lag).
+std::vector<SensorParams> ReadSensors(const TableReader& root, const AxialRange& position,
+                                      double sample_period_s);
 std::vector<TdbParams> ReadTdbs(const TableReader& root, const AxialRange& position);
 std::vector<UnbalanceParams> ReadUnbalances(const TableReader& root, const AxialRange& position);
 

@@ -47,4 +47,16 @@ timeout 5 "$tool" sim "$pid" --set simulation.duration_s=2000 --set simulation.o
 grep -q "note: a long run: 400000000 steps of 5e-06 s (2000 s simulated) take roughly" long.err ||
   fail "no note before a long run: $(cat long.err)"
 
+# D7: a sensor lag of 1e6 s (wrapped to "-1474836480 samples", exit 1, no file or key) or 1e300 s
+# (silently no lag), from --set and from a file.
+expected=("--set sensor.de.lag.delay_s=1e6: key 'sensor.de.lag.delay_s': expected at most 255 samples of the controller period (1/controller.rate_Hz = 5e-05 s): a number in \[0, 0.01275\] (s), found 1000000")
+expect_error "$pid" sensor.de.lag.enabled=true sensor.de.lag.delay_s=1e6
+expected=("key 'sensor.de.lag.delay_s'" "found 1e+300")
+expect_error "$pid" sensor.de.lag.enabled=true sensor.de.lag.delay_s=1e300
+cp "$source_dir/configs/jarroux2019_industrial.toml" "$source_dir/configs/jarroux2019_industrial_pid.toml" .
+printf '\n[sensor.de.lag]\nenabled = true\ndelay_s = 1e6\n' >>jarroux2019_industrial_pid.toml
+line=$(grep -n '^delay_s = 1e6' jarroux2019_industrial_pid.toml | cut -d: -f1)
+expected=("jarroux2019_industrial_pid.toml:$line: key 'sensor.de.lag.delay_s': expected at most 255 samples")
+expect_error jarroux2019_industrial_pid.toml
+
 echo "hostile configs: ok"
