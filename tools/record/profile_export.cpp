@@ -106,12 +106,16 @@ ProfileExport ExportCurrentProfile(const RunRecordFile& record, const std::strin
   // The record's end is bounded by its header; its config bounds it too.
   const std::int64_t end =
       std::min<std::int64_t>(record.run.end_step, std::llround(params.simulation.duration_s / dt));
-  const std::int64_t from = std::llround(window.from_s / dt);
-  const std::int64_t to = window.to_s < 0.0 ? end : std::llround(window.to_s / dt);
-  if (from < 0 || to > end || to <= from) {
+  // Compared in steps as doubles first: llround is undefined beyond int64.
+  const double end_steps = static_cast<double>(end) + 0.5;
+  const bool inside = window.from_s >= 0.0 && window.from_s / dt < end_steps &&
+                      (window.to_s < 0.0 || window.to_s / dt < end_steps);
+  const std::int64_t from = inside ? std::llround(window.from_s / dt) : 0;
+  const std::int64_t to = !inside || window.to_s < 0.0 ? end : std::llround(window.to_s / dt);
+  if (!inside || from < 0 || to > end || to <= from) {
     throw std::runtime_error(fmt::format(
         "the profile window {} s to {} s is not inside the record, which covers 0 s to {} s",
-        from * dt, to * dt, end * dt));
+        window.from_s, window.to_s < 0.0 ? end * dt : window.to_s, end * dt));
   }
 
   ProfileExport out;
