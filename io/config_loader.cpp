@@ -40,9 +40,17 @@ ModelParams ReadModel(const TableReader& root) {
   const config_detail::AxialRange position = config_detail::ShaftRange(params.rotor);
   params.bearings = config_detail::ReadBearings(root, position);
   params.ambs = config_detail::ReadAmbs(root, position);
-  // Before the sensors: they are sampled at its rate.
+  // Before the sensors: they are sampled at its rate, or at every step without a controller
+  // (as `ambdrop sim` drives a profile-driven rig).
   params.controller = config_detail::ReadController(root);
-  params.sensors = config_detail::ReadSensors(root, position, 1.0 / params.controller.rate_Hz);
+  const config_detail::SensorSampling sampling =
+      params.controller.kind == ControllerKind::kNone
+          ? config_detail::SensorSampling{params.simulation.step_s,
+                                          "the step (simulation.step_s; [controller] kind = "
+                                          "\"none\")"}
+          : config_detail::SensorSampling{1.0 / params.controller.rate_Hz,
+                                          "the controller period (1/controller.rate_Hz)"};
+  params.sensors = config_detail::ReadSensors(root, position, sampling);
   params.tdbs = config_detail::ReadTdbs(root, position);
   params.unbalances = config_detail::ReadUnbalances(root, position);
   return params;

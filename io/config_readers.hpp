@@ -2,6 +2,7 @@
 // One reader per section of the config schema (see config_loader.hpp). Each checks its own keys
 // strictly and throws ConfigError on the first problem.
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "io/toml_reader.hpp"
@@ -28,9 +29,13 @@ double ReadAxialPosition(const TableReader& table, const AxialRange& range);
 
 std::vector<LinearBearingParams> ReadBearings(const TableReader& root, const AxialRange& position);
 std::vector<AmbParams> ReadAmbs(const TableReader& root, const AxialRange& position);
-/// `sample_period_s`: the controller's period, at which the sensors are sampled (it bounds a lag).
+/// The period at which the sensors are sampled (it bounds a lag), and how a message names it.
+struct SensorSampling {
+  double period_s = 0.0;
+  std::string what;  ///< "the controller period (1/controller.rate_Hz)"
+};
 std::vector<SensorParams> ReadSensors(const TableReader& root, const AxialRange& position,
-                                      double sample_period_s);
+                                      const SensorSampling& sampling);
 std::vector<TdbParams> ReadTdbs(const TableReader& root, const AxialRange& position);
 std::vector<UnbalanceParams> ReadUnbalances(const TableReader& root, const AxialRange& position);
 

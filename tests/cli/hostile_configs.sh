@@ -49,7 +49,7 @@ grep -q "note: a long run: 400000000 steps of 5e-06 s (2000 s simulated) take ro
 
 # D7: a sensor lag of 1e6 s (wrapped to "-1474836480 samples", exit 1, no file or key) or 1e300 s
 # (silently no lag), from --set and from a file.
-expected=("--set sensor.de.lag.delay_s=1e6: key 'sensor.de.lag.delay_s': expected at most 255 samples of the controller period (1/controller.rate_Hz = 5e-05 s): a number in \[0, 0.01275\] (s), found 1000000")
+expected=("--set sensor.de.lag.delay_s=1e6: key 'sensor.de.lag.delay_s': expected at most 255 samples of the controller period (1/controller.rate_Hz) = 5e-05 s: a number in \[0, 0.01275\] (s), found 1000000")
 expect_error "$pid" sensor.de.lag.enabled=true sensor.de.lag.delay_s=1e6
 expected=("key 'sensor.de.lag.delay_s'" "found 1e+300")
 expect_error "$pid" sensor.de.lag.enabled=true sensor.de.lag.delay_s=1e300
@@ -58,5 +58,8 @@ printf '\n[sensor.de.lag]\nenabled = true\ndelay_s = 1e6\n' >>jarroux2019_indust
 line=$(grep -n '^delay_s = 1e6' jarroux2019_industrial_pid.toml | cut -d: -f1)
 expected=("jarroux2019_industrial_pid.toml:$line: key 'sensor.de.lag.delay_s': expected at most 255 samples")
 expect_error jarroux2019_industrial_pid.toml
+# Without a controller, `sim` samples the sensors at every step: the bound is 255 steps.
+expected=("key 'sensor.de.lag.delay_s': expected at most 255 samples of the step (simulation.step_s; \[controller\] kind = \"none\") = 5e-06 s: a number in \[0, 0.001275\] (s), found 0.005")
+expect_error jarroux2019_industrial.toml sensor.de.lag.enabled=true sensor.de.lag.delay_s=0.005
 
 echo "hostile configs: ok"
