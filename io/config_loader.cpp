@@ -3,10 +3,11 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "io/config_base.hpp"
+#include "io/config_file.hpp"
 #include "io/config_measurement.hpp"
 #include "io/config_overrides.hpp"
 #include "io/config_readers.hpp"
@@ -42,7 +43,7 @@ ModelParams ReadModel(const TableReader& root) {
   params.ambs = config_detail::ReadAmbs(root, position);
   // Before the sensors: they are sampled at its rate, or at every step without a controller
   // (as `ambdrop sim` drives a profile-driven rig).
-  params.controller = config_detail::ReadController(root);
+  params.controller = config_detail::ReadController(root, params.simulation.step_s);
   const config_detail::SensorSampling sampling =
       params.controller.kind == ControllerKind::kNone
           ? config_detail::SensorSampling{params.simulation.step_s,
@@ -60,12 +61,11 @@ ModelParams ReadModel(const TableReader& root) {
 
 LoadedConfig LoadConfig(const std::filesystem::path& path,
                         const std::vector<std::string>& overrides) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw ConfigError(fmt::format("{}: cannot open the config file", path.string()));
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) throw ConfigError(fmt::format("{}: cannot read the config file", path.string()));
-  return LoadConfigFromString(text.str(), path.string(), overrides);
+  std::string why;
+  const std::optional<std::string> text = config_detail::ReadConfigFile(path, &why);
+  if (!text)
+    throw ConfigError(fmt::format("{}: not a readable config file: {}", path.string(), why));
+  return LoadConfigFromString(*text, path.string(), overrides);
 }
 
 LoadedConfig LoadConfigFromString(const std::string& text, const std::string& source_name,

@@ -15,7 +15,8 @@ GravityParams ReadGravity(const TableReader& root);
 TriggerParams ReadTrigger(const TableReader& root);
 
 RotorParams ReadRotor(const TableReader& root);
-ControllerParams ReadController(const TableReader& root);
+/// `step_s`: the physics step, of which a given controller.rate_Hz's period must be a whole number.
+ControllerParams ReadController(const TableReader& root, double step_s);
 
 /// Where components may sit: on the shaft for a flexible rotor, anywhere finite for a rigid one.
 struct AxialRange {

@@ -67,6 +67,8 @@ int RunHilCommand(const HilCommandOptions& options) {
   try {
     config = LoadConfig(options.config_path, options.overrides);
     model.emplace(BuildModel(config.params));
+    // A config error (the controller period in whole steps), not one of the links' below.
+    ControllerSubsteps(*model);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitConfig;

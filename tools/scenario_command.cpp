@@ -44,6 +44,7 @@ const char* StatusOf(HilStop stop) {
 int RunScenarioCommand(const SimOptions& options) {
   LoadedConfig config;
   std::optional<Model> model;
+  std::int64_t substeps = 0;
   try {
     config = LoadConfig(options.scenario_path, options.overrides);
     if (!config.scenario) {
@@ -56,13 +57,13 @@ int RunScenarioCommand(const SimOptions& options) {
       config.params.controller.rate_Hz = 1.0 / config.params.simulation.step_s;
     }
     model.emplace(BuildModel(config.params));
+    substeps = ControllerSubsteps(*model);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitConfig;
   }
   NoteLongRun(*model, false);
   const ScenarioParams& scenario = *config.scenario;
-  const std::int64_t substeps = ControllerSubsteps(*model);
   const double dt = model->params.simulation.step_s;
   const double period_s = static_cast<double>(substeps) * dt;
 

@@ -143,6 +143,8 @@ int RunSimCommand(const SimOptions& options) {
   std::optional<Model> model;
   try {
     model.emplace(BuildModel(config.params));
+    // The controller period in whole steps: a config error here, not an exception mid-run.
+    if (model->params.controller.kind != ControllerKind::kNone) ControllerSubsteps(*model);
   } catch (const std::invalid_argument& e) {
     fmt::print(stderr, "error: {}: cannot build the model: {}\n", options.config_path, e.what());
     return kExitConfig;

@@ -62,4 +62,25 @@ expect_error jarroux2019_industrial_pid.toml
 expected=("key 'sensor.de.lag.delay_s': expected at most 255 samples of the step (simulation.step_s; \[controller\] kind = \"none\") = 5e-06 s: a number in \[0, 0.001275\] (s), found 0.005")
 expect_error jarroux2019_industrial.toml sensor.de.lag.enabled=true sensor.de.lag.delay_s=0.005
 
+# D9: a folder as the config (read as an empty file), a base that never ends (/dev/zero read
+# until bad_alloc), a shaft of 100000 elements (a bare std::bad_alloc), and a controller rate that
+# is not a whole number of steps (exit 1, no file or line, a 0.1 us step printed as 0.000000 s).
+mkdir folder.toml
+expected=("folder.toml: not a readable config file: .*folder.toml is not a regular file (a folder)")
+expect_error folder.toml
+printf 'base = "/dev/zero"\n' >zero.toml
+expected=("zero.toml:1: key 'base': expected a readable config file, found \"/dev/zero\" (/dev/zero is not a regular file")
+expect_error zero.toml
+sed '0,/^elements = [0-9]*/s//elements = 100000/' "$source_dir/configs/jarroux2019_industrial.toml" >elements.toml
+line=$(grep -n '^elements = 100000' elements.toml | cut -d: -f1)
+expected=("elements.toml:$line: key 'rotor.sections\[0\].elements': expected an integer in \[1, 500\], found 100000")
+expect_error elements.toml
+expected=("--set controller.rate_Hz=30000: key 'controller.rate_Hz': expected a rate whose period is a whole number of steps of simulation.step_s = 5e-06 s (e.g. 28571.4 Hz), found 30000 Hz, a period of 6.66667 steps")
+expect_error "$pid" controller.rate_Hz=30000
+expected=("step_s = 1e-07 s")
+expect_error "$pid" simulation.step_s=1e-7 controller.rate_Hz=30000
+rc=0
+"$tool" hil "$pid" --set controller.rate_Hz=30000 --virtual-clock --out hil -q 2>hil.err || rc=$?
+[[ $rc -eq 2 ]] || fail "hil with a rate of 6.67 steps exited $rc, not 2: $(cat hil.err)"
+
 echo "hostile configs: ok"

@@ -43,4 +43,11 @@ expect_usage --tolerance inf fit "$pid"
 expect_usage --profile-from nan replay none.lcm --export-profile out.toml
 expect_usage --profile-to inf replay none.lcm --export-profile out.toml
 
+# D9: validate -q without its configs folder said nothing and exited 1.
+rc=0
+"$tool" validate -q --configs "$work/no_such_folder" --out out >/dev/null 2>err.txt || rc=$?
+[[ $rc -eq 2 ]] || fail "validate without its configs folder exited $rc, not 2: $(cat err.txt)"
+grep -q -- "--configs $work/no_such_folder: not a folder of seed rig configs" err.txt ||
+  fail "validate -q without its configs folder: unclear error: $(cat err.txt)"
+
 echo "hostile flags: ok"
