@@ -1,6 +1,7 @@
 #include "controller_if/hil_session.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -11,11 +12,13 @@ std::int64_t ControllerSubsteps(const Model& model) {
   const double ratio = 1.0 / (model.params.controller.rate_Hz * dt);
   const std::int64_t n = std::llround(ratio);
   if (n < 1 || std::abs(ratio - static_cast<double>(n)) > 1e-6 * ratio) {
-    throw std::invalid_argument(
-        "controller.rate_Hz = " + std::to_string(model.params.controller.rate_Hz) +
-        ": the controller period must be a whole number of physics "
-        "steps (" +
-        std::to_string(dt) + " s)");
+    // %g: std::to_string's %f printed a 0.1 us step as 0.000000 s.
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "controller.rate_Hz = %.6g: the controller period must be a whole number of "
+                  "physics steps (simulation.step_s = %.6g s); it is %.6g steps",
+                  model.params.controller.rate_Hz, dt, ratio);
+    throw std::invalid_argument(text);
   }
   return n;
 }

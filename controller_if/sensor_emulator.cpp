@@ -1,6 +1,7 @@
 #include "controller_if/sensor_emulator.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -11,12 +12,16 @@ SensorEmulator::SensorEmulator(const std::vector<SensorParams>& sensors, double 
     : params_(sensors), channels_(sensors.size()) {
   for (std::size_t i = 0; i < sensors.size(); ++i) {
     const SensorParams& p = sensors[i];
-    const int delay = p.lag.enabled ? static_cast<int>(std::llround(p.lag.delay_s / period_s)) : 0;
-    if (delay < 0 || delay >= kMaxSensorDelaySamples) {
-      throw std::invalid_argument("sensor '" + p.name + "': delay of " + std::to_string(delay) +
-                                  " samples, at most " +
-                                  std::to_string(kMaxSensorDelaySamples - 1));
+    // In samples as a double first: llround is undefined beyond int64, int beyond 2^31.
+    const double samples = p.lag.enabled ? p.lag.delay_s / period_s : 0.0;
+    if (!(samples >= 0.0 && samples < kMaxSensorDelaySamples - 0.5)) {
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "sensor.%s.lag.delay_s = %.6g s is %.6g samples of %.6g s, at most %d",
+                    p.name.c_str(), p.lag.delay_s, samples, period_s, kMaxSensorDelaySamples - 1);
+      throw std::invalid_argument(text);
     }
+    const int delay = static_cast<int>(std::llround(samples));
     // Backward-Euler first-order low-pass: y += a (x - y), a = dt / (dt + 1/(2 pi fc)).
     filter_alpha_[i] = 1.0;
     if (p.lag.enabled && p.lag.cutoff_Hz > 0.0) {

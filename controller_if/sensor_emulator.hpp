@@ -10,8 +10,6 @@
 
 namespace ambdrop {
 
-inline constexpr int kMaxSensorDelaySamples = 256;
-
 /// One sample of every sensor as the controller receives it.
 struct SensorReadings {
   std::array<std::array<double, 2>, kMaxSensors> reading_m{};     ///< (x, y), metres

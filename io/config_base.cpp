@@ -3,10 +3,10 @@
 #include <fmt/format.h>
 
 #include <array>
-#include <fstream>
-#include <sstream>
+#include <optional>
 #include <string_view>
 
+#include "io/config_file.hpp"
 #include "io/config_loader.hpp"
 #include "io/toml_reader.hpp"
 
@@ -54,17 +54,15 @@ toml::table ResolveBase(toml::table table, const std::filesystem::path& director
         fmt::format("at most {} levels of base configs (is there a cycle?)", kMaxBaseDepth));
   }
   const std::filesystem::path base_path = directory / base_node->as_string()->get();
-  std::ifstream file(base_path, std::ios::binary);
-  if (!file) {
-    ThrowBadValue(
-        *base_node, source_name, "base", "a readable config file",
-        fmt::format("\"{}\" (cannot open {})", base_node->as_string()->get(), base_path.string()));
+  std::string why;
+  const std::optional<std::string> text = ReadConfigFile(base_path, &why);
+  if (!text) {
+    ThrowBadValue(*base_node, source_name, "base", "a readable config file",
+                  fmt::format("\"{}\" ({})", base_node->as_string()->get(), why));
   }
-  std::ostringstream text;
-  text << file.rdbuf();
   toml::table base;
   try {
-    base = toml::parse(text.str(), base_path.string());
+    base = toml::parse(*text, base_path.string());
   } catch (const toml::parse_error& error) {
     throw ConfigError(fmt::format("{}:{}: {} (column {})", base_path.string(),
                                   error.source().begin.line, error.description(),

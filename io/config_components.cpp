@@ -62,7 +62,7 @@ namespace {
 
 // A sensor plane and its error models, each a switch (noise, runout, lag).
 SensorParams ReadSensor(const std::string& name, const TableReader& table,
-                        const AxialRange& position) {
+                        const AxialRange& position, const SensorSampling& sampling) {
   table.AllowOnly({"position_m", "gain", "offset_m", "quantisation_m", "noise", "runout", "lag",
                    "output", "counts_per_m", "counts_offset"});
   SensorParams s;
@@ -89,7 +89,16 @@ SensorParams ReadSensor(const std::string& name, const TableReader& table,
   if (const auto lag = table.OptionalTable("lag")) {
     lag->AllowOnly({"enabled", "delay_s", "cutoff_Hz"});
     s.lag.enabled = lag->Bool("enabled", false);
-    s.lag.delay_s = lag->Number("delay_s", NonNegative(), 0.0);
+    // The lag holds whole samples in a ring of kMaxSensorDelaySamples.
+    const double longest_s = (kMaxSensorDelaySamples - 1) * sampling.period_s;
+    s.lag.delay_s = lag->Number(
+        "delay_s",
+        NumberRule{.lower = 0.0,
+                   .upper = longest_s,
+                   .what = fmt::format(
+                       "at most {} samples of {} = {:.6g} s: a number in [0, {:.6g}]",
+                       kMaxSensorDelaySamples - 1, sampling.what, sampling.period_s, longest_s)},
+        0.0);
     s.lag.cutoff_Hz = lag->Number("cutoff_Hz", NonNegative(), 0.0);
   }
   const std::string output = table.Choice("output", {"metres", "counts"}, "metres");
@@ -106,11 +115,14 @@ SensorParams ReadSensor(const std::string& name, const TableReader& table,
 
 }  // namespace
 
-std::vector<SensorParams> ReadSensors(const TableReader& root, const AxialRange& position) {
+std::vector<SensorParams> ReadSensors(const TableReader& root, const AxialRange& position,
+                                      const SensorSampling& sampling) {
   const auto tables = root.NamedTables("sensor");
   root.CheckCount("sensor", tables.size(), kMaxSensors, "sensors");
   std::vector<SensorParams> sensors;
-  for (const auto& [name, table] : tables) sensors.push_back(ReadSensor(name, table, position));
+  for (const auto& [name, table] : tables) {
+    sensors.push_back(ReadSensor(name, table, position, sampling));
+  }
   return sensors;
 }
 

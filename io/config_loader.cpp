@@ -3,10 +3,11 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "io/config_base.hpp"
+#include "io/config_file.hpp"
 #include "io/config_measurement.hpp"
 #include "io/config_overrides.hpp"
 #include "io/config_readers.hpp"
@@ -40,10 +41,19 @@ ModelParams ReadModel(const TableReader& root) {
   const config_detail::AxialRange position = config_detail::ShaftRange(params.rotor);
   params.bearings = config_detail::ReadBearings(root, position);
   params.ambs = config_detail::ReadAmbs(root, position);
-  params.sensors = config_detail::ReadSensors(root, position);
+  // Before the sensors: they are sampled at its rate, or at every step without a controller
+  // (as `ambdrop sim` drives a profile-driven rig).
+  params.controller = config_detail::ReadController(root, params.simulation.step_s);
+  const config_detail::SensorSampling sampling =
+      params.controller.kind == ControllerKind::kNone
+          ? config_detail::SensorSampling{params.simulation.step_s,
+                                          "the step (simulation.step_s; [controller] kind = "
+                                          "\"none\")"}
+          : config_detail::SensorSampling{1.0 / params.controller.rate_Hz,
+                                          "the controller period (1/controller.rate_Hz)"};
+  params.sensors = config_detail::ReadSensors(root, position, sampling);
   params.tdbs = config_detail::ReadTdbs(root, position);
   params.unbalances = config_detail::ReadUnbalances(root, position);
-  params.controller = config_detail::ReadController(root);
   return params;
 }
 
@@ -51,12 +61,11 @@ ModelParams ReadModel(const TableReader& root) {
 
 LoadedConfig LoadConfig(const std::filesystem::path& path,
                         const std::vector<std::string>& overrides) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw ConfigError(fmt::format("{}: cannot open the config file", path.string()));
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) throw ConfigError(fmt::format("{}: cannot read the config file", path.string()));
-  return LoadConfigFromString(text.str(), path.string(), overrides);
+  std::string why;
+  const std::optional<std::string> text = config_detail::ReadConfigFile(path, &why);
+  if (!text)
+    throw ConfigError(fmt::format("{}: not a readable config file: {}", path.string(), why));
+  return LoadConfigFromString(*text, path.string(), overrides);
 }
 
 LoadedConfig LoadConfigFromString(const std::string& text, const std::string& source_name,

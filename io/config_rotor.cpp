@@ -2,7 +2,6 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
-#include <climits>
 #include <map>
 #include <numbers>
 #include <string>
@@ -17,6 +16,10 @@ using MaterialMap = std::map<std::string, Material>;
 
 // Section lengths that add up to e.g. 0.7999999999999999 must still admit a component at 0.8.
 constexpr double kShaftEndTolerance = 1e-9;
+
+// The finite-element model is dense, 4 DOF per node: 500 elements already take a 2004 x 2004
+// eigenproblem; 100000 ran out of memory (a bare std::bad_alloc).
+constexpr int kMaxShaftElements = 500;
 
 const std::vector<std::string_view> kDiscMassKeys = {"mass_kg", "polar_inertia_kg_m2",
                                                      "transverse_inertia_kg_m2"};
@@ -66,6 +69,7 @@ std::vector<ShaftSection> ReadSections(const TableReader& rotor, const MaterialM
     rotor.FailMissing("sections", expected);
   }
   std::vector<ShaftSection> sections;
+  int elements = 0;
   for (const TableReader& table : tables) {
     table.AllowOnly({"length_m", "outer_diameter_m", "inner_diameter_m", "material", "elements"});
     ShaftSection section;
@@ -74,7 +78,14 @@ std::vector<ShaftSection> ReadSections(const TableReader& rotor, const MaterialM
     section.inner_diameter_m =
         table.Number("inner_diameter_m", InnerDiameterRule(section.outer_diameter_m), 0.0);
     section.material = LookUpMaterial(table, materials);
-    section.elements = table.Integer("elements", 1, INT_MAX, section.elements);
+    section.elements = table.Integer("elements", 1, kMaxShaftElements, section.elements);
+    elements += section.elements;
+    if (elements > kMaxShaftElements) {
+      table.Fail(
+          "elements",
+          fmt::format("at most {} elements over all sections of the shaft", kMaxShaftElements),
+          fmt::format("{} (the shaft's {} so far)", section.elements, elements));
+    }
     sections.push_back(section);
   }
   return sections;

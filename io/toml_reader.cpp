@@ -239,6 +239,17 @@ int TableReader::Integer(std::string_view key, int lower, int upper, int fallbac
   return static_cast<int>(integer->get());
 }
 
+std::int64_t TableReader::Integer64(std::string_view key, std::int64_t lower, std::int64_t upper,
+                                    std::int64_t fallback) const {
+  const toml::node* node = Find(key);
+  if (node == nullptr) return fallback;
+  const auto* integer = node->as_integer();
+  if (integer == nullptr || integer->get() < lower || integer->get() > upper) {
+    Fail(key, fmt::format("an integer in [{}, {}]", lower, upper));
+  }
+  return integer->get();
+}
+
 bool TableReader::Bool(std::string_view key, bool fallback) const {
   const toml::node* node = Find(key);
   if (node == nullptr) return fallback;

@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -81,6 +82,8 @@ class TableReader {
   double Number(std::string_view key, const NumberRule& rule, double fallback) const;
   std::optional<double> OptionalNumber(std::string_view key, const NumberRule& rule) const;
   int Integer(std::string_view key, int lower, int upper, int fallback) const;
+  std::int64_t Integer64(std::string_view key, std::int64_t lower, std::int64_t upper,
+                         std::int64_t fallback) const;
   bool Bool(std::string_view key, bool fallback) const;
   std::string String(std::string_view key) const;
   std::string String(std::string_view key, std::string_view fallback) const;

@@ -1,6 +1,7 @@
 #include "rt_core/model.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -118,6 +119,19 @@ void CheckModelParams(const ModelParams& params) {
   CheckCount(params.bearings.size(), kMaxLinearBearings, "linear bearings");
   if (!(params.simulation.step_s > 0.0))
     throw std::invalid_argument("simulation.step_s must be > 0");
+  // Checked as a double before llround, which is undefined beyond int64.
+  const double steps = params.simulation.duration_s / params.simulation.step_s;
+  if (!(steps >= 0.0 && steps <= static_cast<double>(params.simulation.max_steps))) {
+    throw std::invalid_argument(
+        "simulation.duration_s / simulation.step_s = " + std::to_string(steps) +
+        " steps, beyond simulation.max_steps = " + std::to_string(params.simulation.max_steps));
+  }
+}
+
+// A scheduled time as a step; times after the run's end (which never come) as the step after it,
+// so that no time, however large, overflows the conversion.
+std::int64_t StepAt(double time_s, double dt, std::int64_t total_steps) {
+  return std::llround(std::min(time_s / dt, static_cast<double>(total_steps + 1)));
 }
 
 }  // namespace
@@ -175,11 +189,11 @@ Model BuildModel(const ModelParams& params, const ReducedRotor& rotor) {
   SplitByPlane(&m);
 
   const double dt = params.simulation.step_s;
-  m.trigger_step = params.trigger.enabled ? std::llround(params.trigger.time_s / dt) : -1;
-  m.restore_step = params.trigger.enabled && params.trigger.restore_time_s >= 0.0
-                       ? std::llround(params.trigger.restore_time_s / dt)
-                       : -1;
   m.total_steps = std::llround(params.simulation.duration_s / dt);
+  m.trigger_step = params.trigger.enabled ? StepAt(params.trigger.time_s, dt, m.total_steps) : -1;
+  m.restore_step = params.trigger.enabled && params.trigger.restore_time_s >= 0.0
+                       ? StepAt(params.trigger.restore_time_s, dt, m.total_steps)
+                       : -1;
   return m;
 }
 

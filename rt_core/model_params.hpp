@@ -105,6 +105,9 @@ struct SimulationParams {
   /// Divergence guard: the run stops when a journal leaves its TDB by more than this many
   /// clearances, or a state becomes non-finite.
   double max_excursion_over_clearance = 50.0;
+  /// Ceiling on duration_s / step_s: a run beyond it is a config error, not days of computing
+  /// (1e9 steps: 5000 s at the default step; about 10 min at 1.6 M steps/s).
+  std::int64_t max_steps = 1'000'000'000;
 };
 
 /// Everything a config describes; immutable once a Model is built from it.

@@ -2,7 +2,9 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <string>
 
@@ -31,6 +33,19 @@ CLI::Option* AddSetOption(CLI::App* command, std::vector<std::string>* overrides
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
 }
+
+// CLI11 reads "nan" and "inf" into a double, and its Range and PositiveNumber let NaN through
+// (every comparison with it is false): each number flag is checked finite first.
+const CLI::Validator kFinite(
+    [](std::string& text) {
+      char* end = nullptr;
+      const double value = std::strtod(text.c_str(), &end);
+      if (end == text.c_str() || *end != '\0' || !std::isfinite(value)) {
+        return "expected a finite number, found " + text;
+      }
+      return std::string();
+    },
+    "FINITE");
 
 }  // namespace
 
@@ -95,12 +110,12 @@ int main(int argc, char** argv) {
   replay_command
       ->add_option("--profile-from", replay.profile.from_s,
                    "Export from this record time (s); the profile starts there at 0 s")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kFinite & CLI::NonNegativeNumber)
       ->needs(export_profile)
       ->capture_default_str();
   replay_command
       ->add_option("--profile-to", replay.profile.to_s, "Export up to this record time (s)")
-      ->check(CLI::PositiveNumber)
+      ->check(kFinite & CLI::PositiveNumber)
       ->needs(export_profile);
 
   ambdrop::ValidateOptions validate;
@@ -128,7 +143,8 @@ int main(int argc, char** argv) {
       modes_command
           ->add_option("--speed-rpm", speed_rpm,
                        "Spin speed in rpm (default: the config's simulation.spin_speed_rad_s)")
-          ->type_name("R");
+          ->type_name("R")
+          ->check(kFinite & CLI::Range(-1e7, 1e7));
   modes_command->add_option("--count", modes.count, "Frequencies per list at most")
       ->type_name("N")
       ->check(CLI::Range(1, 1000))
@@ -178,7 +194,7 @@ int main(int argc, char** argv) {
                    "sleeping (default: realtime.spin_s); with SCHED_FIFO a spin near the period "
                    "trips the kernel's RT throttling")
       ->type_name("US")
-      ->check(CLI::Range(0.0, 10000.0));
+      ->check(kFinite & CLI::Range(0.0, 10000.0));
   hil_command->add_flag(
       "--lcm-io-fifo", hil.lcm_io_fifo,
       "With --controller lcm and SCHED_FIFO: run LCM's receive and publish threads SCHED_FIFO one "
@@ -190,6 +206,7 @@ int main(int argc, char** argv) {
   hil_command
       ->add_option("--watchdog-s", hil.watchdog_timeout_s,
                    "Controller silence that trips the watchdog (s)")
+      ->check(kFinite & CLI::Range(0.0, 1e6))
       ->capture_default_str();
   hil_command->add_option("--silence", hil.silence_action, "Watchdog action: hold | zero | stop")
       ->capture_default_str();
@@ -204,6 +221,7 @@ int main(int argc, char** argv) {
   hil_command
       ->add_option("--lockstep-timeout-s", hil.lockstep_timeout_s,
                    "Longest wait for an answer in --lockstep (wall time, s)")
+      ->check(kFinite & CLI::Range(0.0, 1e6))
       ->capture_default_str();
   lockstep->needs(hil_command->get_option("--virtual-clock"));
   hil_command
@@ -228,7 +246,7 @@ int main(int argc, char** argv) {
                    "Sample rate, a whole number of physics steps per sample (default: the "
                    "config's controller.rate_Hz)")
       ->type_name("R")
-      ->check(CLI::PositiveNumber);
+      ->check(kFinite & CLI::PositiveNumber);
   measure_command
       ->add_option("--channels", measure.channels,
                    "Comma list of channel groups: displacement, current, tdb_normal_force, "
@@ -244,19 +262,19 @@ int main(int argc, char** argv) {
       ->add_option("--current-noise-A", measure.current_noise_A,
                    "Standard deviation of the noise added to the currents (A)")
       ->type_name("S")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kFinite & CLI::NonNegativeNumber)
       ->capture_default_str();
   measure_command
       ->add_option("--force-noise-N", measure.force_noise_N,
                    "Standard deviation of the noise added to the TDB normal forces (N)")
       ->type_name("S")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kFinite & CLI::NonNegativeNumber)
       ->capture_default_str();
   measure_command
       ->add_option("--speed-noise-rad-s", measure.speed_noise_rad_s,
                    "Standard deviation of the noise added to the TDB and rotor speeds (rad/s)")
       ->type_name("S")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kFinite & CLI::NonNegativeNumber)
       ->capture_default_str();
   measure_command
       ->add_option("--seed", measure.seed,
@@ -267,7 +285,7 @@ int main(int argc, char** argv) {
       ->add_option("--from-s", measure.from_s,
                    "Leave out the rows before this run time (t stays run time)")
       ->type_name("T0")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kFinite & CLI::NonNegativeNumber)
       ->capture_default_str();
   measure_command->add_flag("--quiet,-q", measure.quiet,
                             "No summary on stdout and no progress bar");
@@ -298,7 +316,7 @@ int main(int argc, char** argv) {
   fit_command
       ->add_option("--lead-s", fit.lead_s,
                    "Simulate from this long before the trigger, from the measured state")
-      ->check(CLI::PositiveNumber)
+      ->check(kFinite & CLI::PositiveNumber)
       ->capture_default_str();
   fit_command->add_option("--threads", fit.threads, "Candidates fitted in parallel")
       ->check(CLI::Range(1, 64))
@@ -311,7 +329,7 @@ int main(int argc, char** argv) {
   fit_command
       ->add_option("--tolerance", fit.tolerance,
                    "Overall relative RMS residual within which model and record agree")
-      ->check(CLI::PositiveNumber)
+      ->check(kFinite & CLI::PositiveNumber)
       ->capture_default_str();
   fit_command->add_flag("--quiet,-q", fit.quiet, "No summary on stdout");
 

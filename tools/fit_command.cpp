@@ -29,7 +29,29 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Every channel's column is in the record, and the record is sampled as declared.
+// Far beyond any rig, yet far inside a double: a value past it is a broken logger or file, and
+// would otherwise swamp its channel's noise estimate and drop the channel without a word.
+struct PhysicalBound {
+  double bound;
+  const char* unit;
+};
+PhysicalBound BoundOf(MeasuredQuantity q) {
+  switch (q) {
+    case MeasuredQuantity::kDisplacement:
+      return {1.0, "m"};
+    case MeasuredQuantity::kCurrent:
+      return {1e4, "A"};
+    case MeasuredQuantity::kTdbNormalForce:
+      return {1e9, "N"};
+    case MeasuredQuantity::kTdbSpeed:
+    case MeasuredQuantity::kRotorSpeed:
+      return {1e7, "rad/s"};
+  }
+  return {0.0, ""};
+}
+
+// Every channel's column is in the record, its values are physical, and the record is sampled
+// as declared.
 void CheckRecord(const MeasurementParams& m, const MeasuredRecord& r, const std::string& config) {
   std::string missing;
   for (const MeasurementChannel& ch : m.channels) {
@@ -41,6 +63,19 @@ void CheckRecord(const MeasurementParams& m, const MeasuredRecord& r, const std:
     throw MeasuredRecordError(
         fmt::format("{}: the columns{} of {}'s [measurement] are not in the record; it has:{}",
                     r.source, missing, config, have));
+  }
+  for (const MeasurementChannel& ch : m.channels) {
+    const PhysicalBound b = BoundOf(ch.quantity);
+    const std::vector<double>& v = r.values[r.Column(ch.column)];
+    for (std::size_t row = 0; row < v.size(); ++row) {
+      if (!(std::abs(v[row]) <= b.bound)) {
+        throw MeasuredRecordError(fmt::format(
+            "{}: column '{}' ({}) at t = {:.9g} s (data row {}): expected |value| <= {:g} {}, "
+            "found {:g}",
+            r.source, ch.column, MeasuredQuantityName(ch.quantity), r.time_s[row], row + 1, b.bound,
+            b.unit, v[row]));
+      }
+    }
   }
   const double rate = 1.0 / r.SampleInterval();
   if (std::abs(rate / m.sample_rate_Hz - 1.0) > 0.01) {
@@ -243,6 +278,10 @@ int RunFitCommand(const FitOptions& options) {
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitConfig;
+  }
+  for (const std::string& channel : fit->left_out) {
+    fmt::print(stderr, "warning: channel {} never moves beyond its noise: left out of the fit\n",
+               channel);
   }
   const Selection& selection = fit->selection;
   if (fit->before.status != StepStatus::kOk && !options.quiet) {

@@ -20,6 +20,7 @@
 #include "io/timeseries_csv.hpp"
 #include "tools/exit_codes.hpp"
 #include "tools/hil_links.hpp"
+#include "tools/long_run_note.hpp"
 #include "tools/record/run_record_writer.hpp"
 #include "tools/run_summary.hpp"
 #include "tools/tdb_summary_json.hpp"
@@ -66,6 +67,8 @@ int RunHilCommand(const HilCommandOptions& options) {
   try {
     config = LoadConfig(options.config_path, options.overrides);
     model.emplace(BuildModel(config.params));
+    // A config error (the controller period in whole steps), not one of the links' below.
+    ControllerSubsteps(*model);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitConfig;
@@ -98,6 +101,8 @@ int RunHilCommand(const HilCommandOptions& options) {
     fmt::print(stderr, "error: --silence: {}\n", e.what());
     return kExitUsage;
   }
+
+  NoteLongRun(*model, !options.virtual_clock);
 
   const fs::path out_dir(options.out_dir);
   fs::create_directories(out_dir);
@@ -134,16 +139,23 @@ int RunHilCommand(const HilCommandOptions& options) {
   auto outputs = std::make_unique<HilSession::OutputRing>();
   HilSession session(*model, links.link.get(), links.triggers, hil, outputs.get());
 
-  // The writer drains observations off the real-time thread.
+  // The writer drains observations off the real-time thread. A write error is held (an
+  // exception here would terminate the process) and the ring still drained, so the loop runs on.
   std::atomic<bool> loop_done{false};
+  std::string output_error;  // the writer's until it is joined
   std::thread writer([&] {
     Observation o;
     for (;;) {
       bool any = false;
       while (outputs->TryPop(&o)) {
         summary.Add(o);
-        csv.Write(o);
         any = true;
+        if (!output_error.empty()) continue;
+        try {
+          csv.Write(o);
+        } catch (const std::exception& e) {
+          output_error = e.what();
+        }
       }
       if (!any) {
         if (loop_done.load()) break;
@@ -217,12 +229,16 @@ int RunHilCommand(const HilCommandOptions& options) {
   links.Stop();
   loop_done.store(true);
   writer.join();
-  csv.Close();
+  try {
+    csv.Close();
+  } catch (const std::exception& e) {
+    if (output_error.empty()) output_error = e.what();
+  }
   if (recorder) {
     try {
       recorder->Finish(StopName(session.stop()), session.state().step_index);
     } catch (const std::exception& e) {
-      fmt::print(stderr, "error: --record: {}\n", e.what());
+      if (output_error.empty()) output_error = std::string("--record: ") + e.what();
     }
   }
 
@@ -233,7 +249,16 @@ int RunHilCommand(const HilCommandOptions& options) {
   JsonWriter json;
   json.BeginObject();
   json.Key("config").String(options.config_path);
-  json.Key("status").String(StopName(session.stop()));
+  // A run whose outputs failed is not ok, even if the loop was.
+  json.Key("status").String(session.stop() == HilStop::kDuration && !output_error.empty()
+                                ? "output_error"
+                                : StopName(session.stop()));
+  json.Key("output_error");
+  if (output_error.empty()) {
+    json.Null();
+  } else {
+    json.String(output_error);
+  }
   json.Key("controller").String(options.controller);
   json.Key("clock").String(options.virtual_clock ? "virtual" : "monotonic");
   json.Key("sched_fifo").Bool(grant.fifo);
@@ -261,7 +286,11 @@ int RunHilCommand(const HilCommandOptions& options) {
   WriteStats(json, "compute_per_period", loop->compute());
   WriteTdbSummaries(json, summary);
   json.EndObject();
-  WriteTextFile(out_dir / "summary.json", json.str());
+  try {
+    WriteTextFile(out_dir / "summary.json", json.str());
+  } catch (const std::exception& e) {
+    if (output_error.empty()) output_error = e.what();
+  }
   if (!options.quiet) {
     fmt::print(
         "{}: {}, {} periods, {} overruns; lateness p50/p99/max {:.1f}/{:.1f}/{:.1f} us; "
@@ -274,8 +303,9 @@ int RunHilCommand(const HilCommandOptions& options) {
         static_cast<double>(loop->compute().Quantile(0.99)) / 1e3,
         static_cast<double>(loop->compute().max_ns()) / 1e3);
   }
+  if (!output_error.empty()) fmt::print(stderr, "error: {}\n", output_error);
   if (session.stop() == HilStop::kDiverged) return kExitRunFailed;
-  return kExitOk;
+  return output_error.empty() ? kExitOk : kExitError;
 }
 
 }  // namespace ambdrop

@@ -100,6 +100,7 @@ int RunReplayCommand(const ReplayOptions& options) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitConfig;
   }
+  std::optional<CandumpRecord> dump;  // its counts go into summary.json
   if (candump) {
     if (!config.can) {
       fmt::print(stderr, "error: {}: no [can] table to read the candump log with\n",
@@ -107,23 +108,35 @@ int RunReplayCommand(const ReplayOptions& options) {
       return kExitConfig;
     }
     try {
-      CandumpRecord dump = ReadCandumpRecord(options.record_path, *model, *config.can);
-      for (const std::string& w : dump.warnings) fmt::print(stderr, "warning: {}\n", w);
+      dump = ReadCandumpRecord(options.record_path, *model, *config.can);
+      for (const std::string& w : dump->warnings) fmt::print(stderr, "warning: {}\n", w);
       if (!options.quiet) {
         fmt::print(
             "{}: {} frames, {} from the controller, {} sensor sets, {} unknown, {} "
-            "malformed lines\n",
-            options.record_path, dump.frames, dump.controller_frames, dump.sensors.size(),
-            dump.unknown_frames, dump.malformed_lines);
+            "malformed lines, {} out of order, {} after the run's end\n",
+            options.record_path, dump->frames, dump->controller_frames, dump->sensors.size(),
+            dump->unknown_frames, dump->malformed_lines, dump->out_of_order_lines,
+            dump->frames_after_end);
       }
-      record.run = std::move(dump.run);
-      record.sensors = std::move(dump.sensors);
+      record.run = std::move(dump->run);
+      record.sensors = std::move(dump->sensors);
+      record.warnings = dump->warnings;
+      record.damaged = dump->damaged();
       record.header.source = "candump";
       record.header.step_s = model->params.simulation.step_s;
     } catch (const std::exception& e) {
       fmt::print(stderr, "error: {}\n", e.what());
       return kExitError;
     }
+  }
+  // The record's end is bounded by its header; a config given here may be shorter (as the
+  // candump path bounds it by the config too).
+  if (record.run.end_step > model->total_steps) {
+    fmt::print(stderr,
+               "warning: the record ends at step {}, beyond the config's {} steps: the replay "
+               "stops there\n",
+               record.run.end_step, model->total_steps);
+    record.run.end_step = model->total_steps;
   }
   if (model->params.simulation.step_s != record.header.step_s) {
     fmt::print(stderr,
@@ -180,7 +193,17 @@ int RunReplayCommand(const ReplayOptions& options) {
   json.Key("recorded_with").String(record.header.ambdrop_version);
   json.Key("config").String(recorded_config ? "recorded" : options.config_path);
   json.Key("config_hash_recorded").String(record.header.config_hash);
-  json.Key("status").String(StatusText(result));
+  // A replay whose outputs failed is not ok, even if its physics was.
+  json.Key("status").String(result.status == StepStatus::kOk && !result.watchdog_stop &&
+                                    !output_error.empty()
+                                ? "output_error"
+                                : StatusText(result));
+  json.Key("output_error");
+  if (output_error.empty()) {
+    json.Null();
+  } else {
+    json.String(output_error);
+  }
   json.Key("recorded_status").String(record.footer ? record.footer->status : "unknown");
   json.Key("steps").Integer(result.steps);
   json.Key("damaged").Bool(record.damaged);
@@ -189,6 +212,16 @@ int RunReplayCommand(const ReplayOptions& options) {
   json.Key("replay").BeginObject();
   diff.WriteJson(json, dt);
   json.EndObject();
+  if (dump) {
+    json.Key("candump").BeginObject();
+    json.Key("frames").Integer(dump->frames);
+    json.Key("controller_frames").Integer(dump->controller_frames);
+    json.Key("unknown_frames").Integer(dump->unknown_frames);
+    json.Key("malformed_lines").Integer(dump->malformed_lines);
+    json.Key("out_of_order_lines").Integer(dump->out_of_order_lines);
+    json.Key("frames_after_end").Integer(dump->frames_after_end);
+    json.EndObject();
+  }
   json.Key("warnings").BeginArray();
   for (const std::string& w : record.warnings) json.String(w);
   json.EndArray();

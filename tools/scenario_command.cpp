@@ -17,6 +17,7 @@
 #include "io/json_writer.hpp"
 #include "io/timeseries_csv.hpp"
 #include "tools/exit_codes.hpp"
+#include "tools/long_run_note.hpp"
 #include "tools/record/run_record_writer.hpp"
 #include "tools/record/trajectory_hasher.hpp"
 #include "tools/run_summary.hpp"
@@ -44,6 +45,7 @@ const char* StatusOf(HilStop stop) {
 int RunScenarioCommand(const SimOptions& options) {
   LoadedConfig config;
   std::optional<Model> model;
+  std::int64_t substeps = 0;
   try {
     config = LoadConfig(options.scenario_path, options.overrides);
     if (!config.scenario) {
@@ -56,12 +58,13 @@ int RunScenarioCommand(const SimOptions& options) {
       config.params.controller.rate_Hz = 1.0 / config.params.simulation.step_s;
     }
     model.emplace(BuildModel(config.params));
+    substeps = ControllerSubsteps(*model);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitConfig;
   }
+  NoteLongRun(*model, false);
   const ScenarioParams& scenario = *config.scenario;
-  const std::int64_t substeps = ControllerSubsteps(*model);
   const double dt = model->params.simulation.step_s;
   const double period_s = static_cast<double>(substeps) * dt;
 
@@ -121,11 +124,19 @@ int RunScenarioCommand(const SimOptions& options) {
   RunSummary summary(model->params);
   ScenarioOutcome outcome(*model);
   Observation o;
+  // A write error is held, not thrown through the session: the run finishes and its summary
+  // says what failed.
+  std::string output_error;
   const auto drain = [&] {
     while (outputs->TryPop(&o)) {
       summary.Add(o);
       outcome.Add(o);
-      csv->Write(o);
+      if (!output_error.empty()) continue;
+      try {
+        csv->Write(o);
+      } catch (const std::exception& e) {
+        output_error = e.what();
+      }
     }
   };
   // The virtual clock: period n starts at n periods; the session runs on this thread.
@@ -133,8 +144,18 @@ int RunScenarioCommand(const SimOptions& options) {
   session.Start(0);
   for (std::int64_t n = 1; session.Period(n * period_ns); ++n) drain();
   drain();
-  csv->Close();
-  if (recorder) recorder->Finish(StatusOf(session.stop()), session.state().step_index);
+  try {
+    csv->Close();
+  } catch (const std::exception& e) {
+    if (output_error.empty()) output_error = e.what();
+  }
+  if (recorder) {
+    try {
+      recorder->Finish(StatusOf(session.stop()), session.state().step_index);
+    } catch (const std::exception& e) {
+      if (output_error.empty()) output_error = e.what();
+    }
+  }
 
   const char* status = StatusOf(session.stop());
   const std::vector<ScenarioOutcome::Check> checks =
@@ -146,7 +167,17 @@ int RunScenarioCommand(const SimOptions& options) {
   json.BeginObject();
   json.Key("config").String(options.scenario_path);
   json.Key("name").String(model->params.name);
-  json.Key("status").String(status);
+  // A run whose outputs failed is not ok, even if its physics was.
+  json.Key("status").String(session.stop() != HilStop::kDiverged &&
+                                    session.stop() != HilStop::kWatchdog && !output_error.empty()
+                                ? "output_error"
+                                : status);
+  json.Key("output_error");
+  if (output_error.empty()) {
+    json.Null();
+  } else {
+    json.String(output_error);
+  }
   json.Key("steps").Integer(session.state().step_index);
   json.Key("power_events").Integer(session.counters().power_events);
   json.Key("watchdog_silence_episodes").Integer(session.watchdog().silence_episodes());
@@ -161,7 +192,11 @@ int RunScenarioCommand(const SimOptions& options) {
   json.EndObject();
   WriteTdbSummaries(json, summary);
   json.EndObject();
-  WriteTextFile(out_dir / "summary.json", json.str());
+  try {
+    WriteTextFile(out_dir / "summary.json", json.str());
+  } catch (const std::exception& e) {
+    if (output_error.empty()) output_error = e.what();
+  }
 
   if (!options.quiet) {
     fmt::print("{}: {}\n  {}\n", options.scenario_path, status, scenario.description);
@@ -173,6 +208,10 @@ int RunScenarioCommand(const SimOptions& options) {
   if (session.stop() == HilStop::kDiverged) {
     fmt::print(stderr, "error: the simulation diverged: {}\n",
                DescribeFailure(*model, session.step_status(), session.state()));
+  }
+  if (!output_error.empty()) {
+    fmt::print(stderr, "error: {}\n", output_error);
+    return kExitError;
   }
   if (!all_pass) {
     fmt::print(stderr, "error: {}: an expected outcome did not happen\n", options.scenario_path);

@@ -22,6 +22,7 @@
 #include "io/timeseries_csv.hpp"
 #include "rt_core/model.hpp"
 #include "tools/exit_codes.hpp"
+#include "tools/long_run_note.hpp"
 #include "tools/progress_bar.hpp"
 #include "tools/record/run_record_writer.hpp"
 #include "tools/record/trajectory_hasher.hpp"
@@ -46,6 +47,7 @@ struct RunStatistics {
   std::optional<double> trigger_time_s;
   double final_spin_speed_rad_s = 0.0;
   std::string trajectory_hash;
+  std::string output_error;  ///< a file the run could not write (empty: none)
 
   double simulated_time_s() const { return static_cast<double>(steps) * step_s; }
   double realtime_factor() const {
@@ -71,7 +73,16 @@ std::string SummaryJson(const RunStatistics& run, const RunSummary& summary) {
   json.BeginObject();
   json.Key("config").String(run.config_path);
   json.Key("name").String(run.name);
-  json.Key("status").String(StatusName(run.status));
+  // A run whose outputs failed is not ok, even if its physics was.
+  json.Key("status").String(run.status == StepStatus::kOk && !run.output_error.empty()
+                                ? "output_error"
+                                : StatusName(run.status));
+  json.Key("output_error");
+  if (run.output_error.empty()) {
+    json.Null();
+  } else {
+    json.String(run.output_error);
+  }
   json.Key("failure_message");
   if (run.status == StepStatus::kOk) {
     json.Null();
@@ -135,10 +146,14 @@ int RunSimCommand(const SimOptions& options) {
   std::optional<Model> model;
   try {
     model.emplace(BuildModel(config.params));
+    // The controller period in whole steps: a config error here, not an exception mid-run.
+    if (model->params.controller.kind != ControllerKind::kNone) ControllerSubsteps(*model);
   } catch (const std::invalid_argument& e) {
     fmt::print(stderr, "error: {}: cannot build the model: {}\n", options.config_path, e.what());
     return kExitConfig;
   }
+
+  NoteLongRun(*model, false);
 
   const fs::path out_dir(options.out_dir);
   std::optional<TimeseriesCsvWriter> csv;
@@ -225,6 +240,7 @@ int RunSimCommand(const SimOptions& options) {
       if (output_error.empty()) output_error = e.what();
     }
   }
+  run.output_error = output_error;
   try {
     WriteTextFile(out_dir / "summary.json", SummaryJson(run, summary));
   } catch (const std::exception& e) {

@@ -15,6 +15,13 @@
 namespace ambdrop {
 
 int RunValidateCommand(const ValidateOptions& options) {
+  // Every case reads its rig from there: without it each would fail alone, and -q say nothing.
+  std::error_code ec;
+  if (!std::filesystem::is_directory(options.configs_dir, ec)) {
+    fmt::print(stderr, "error: --configs {}: not a folder of seed rig configs\n",
+               options.configs_dir);
+    return kExitConfig;
+  }
   std::vector<ValidationCase> cases = AllValidationCases();
   if (!options.cases.empty()) {
     for (const std::string& name : options.cases) {
@@ -102,8 +109,16 @@ int RunValidateCommand(const ValidateOptions& options) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitError;
   }
-  if (failed > 0) return kExitError;
-  if (known > 0 && !options.allow_known_failures) return kExitError;
+  // -q prints no table; the exit code alone would not say why.
+  if (failed > 0 || (known > 0 && !options.allow_known_failures)) {
+    for (const ValidationCheck& c : checks) {
+      if (c.pass || (!c.known_failure.empty() && options.allow_known_failures)) continue;
+      fmt::print(stderr, "error: {}: {}: expected {}, got {} ({}){}\n", c.case_name, c.quantity,
+                 c.published, c.ambdrop, c.criterion,
+                 c.known_failure.empty() ? "" : " (known failure)");
+    }
+    return kExitError;
+  }
   return kExitOk;
 }
 

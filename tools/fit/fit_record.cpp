@@ -1,5 +1,10 @@
 #include "tools/fit/fit_record.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "io/measured_csv.hpp"
+
 namespace ambdrop {
 
 std::unique_ptr<FitResult> FitRecord(const ModelParams& declared, const MeasurementParams& m,
@@ -7,6 +12,19 @@ std::unique_ptr<FitResult> FitRecord(const ModelParams& declared, const Measurem
                                      const FitRecordOptions& options) {
   auto fit = std::make_unique<FitResult>();
   const RecordCost cost(declared, m, record, options.run);
+  for (const std::size_t c : cost.left_out()) {
+    fit->left_out.push_back(
+        fmt::format("'{}' ({})", m.channels[c].column, m.channels[c].Describe(declared)));
+  }
+  // Without a channel the residual is empty and any model "already within 0 of the record".
+  if (cost.channels() == 0) {
+    throw MeasuredRecordError(fmt::format(
+        "{}: no channel of the record moves beyond its noise{}: there is nothing to hold the "
+        "model against",
+        record.source,
+        fit->left_out.empty() ? std::string()
+                              : fmt::format(" ({})", fmt::join(fit->left_out, ", "))));
+  }
   fit->before = cost.Simulate(declared);
   fit->library = EffectLibrary(declared);
   fit->selection = SelectEffects(cost, fit->library, cost.NoiseFloor(), options.rules);

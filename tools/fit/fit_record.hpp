@@ -2,6 +2,7 @@
 // `ambdrop fit` without its files: the declared model held against a record, every effect of
 // the library tried, the chosen ones fitted, and the residual before and after.
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "tools/fit/effect_selection.hpp"
@@ -23,9 +24,12 @@ struct FitResult {
   SimulatedRecord after;
   ResidualReport residual_before;
   ResidualReport residual_after;
+  /// Channels left out of the comparison (they never move beyond their noise), described.
+  std::vector<std::string> left_out;
 };
 
-/// Throws (std::runtime_error and its kin) when the record cannot be used with the model.
+/// Throws (std::runtime_error and its kin) when the record cannot be used with the model, or
+/// none of its channels moves beyond its noise (there would be nothing to compare).
 std::unique_ptr<FitResult> FitRecord(const ModelParams& declared,
                                      const MeasurementParams& measurement,
                                      const MeasuredRecord& record, const FitRecordOptions& options);

@@ -150,6 +150,7 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
     // none, a sensor that never moves) tells the fit nothing: it is left out.
     if (!(hi - lo > 10.0 * NoiseSigma(v, start_row, rows))) {
       ++uninformative_;
+      left_out_.push_back(c);
       continue;
     }
     const double range = hi - lo;

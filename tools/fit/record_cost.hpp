@@ -58,6 +58,8 @@ class RecordCost {
   int channels() const { return channels_; }
   /// Channels left out because their range is within ten times their noise.
   int uninformative_channels() const { return uninformative_; }
+  /// Their indices in the measurement's channels.
+  const std::vector<std::size_t>& left_out() const { return left_out_; }
   double compare_from_s() const { return compare_from_s_; }
   double early_end_s() const { return early_end_s_; }
   double settled_from_s() const { return settled_from_s_; }
@@ -95,6 +97,7 @@ class RecordCost {
   double settled_from_s_ = 0.0;
   int channels_ = 0;
   int uninformative_ = 0;
+  std::vector<std::size_t> left_out_;
   std::vector<Sample> samples_;
   std::vector<Block> blocks_;
   std::vector<int> column_;    // record column per measurement channel

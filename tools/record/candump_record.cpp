@@ -1,7 +1,10 @@
 #include "tools/record/candump_record.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 
@@ -21,6 +24,7 @@ int HexDigit(char c) {
 struct LogLine {
   double time_s = 0.0;
   CanFrame frame;
+  std::int64_t number = 0;  ///< line number in the file
 };
 
 // One line of candump -l; nullopt if malformed.
@@ -95,17 +99,39 @@ CandumpRecord ReadCandumpRecord(const std::filesystem::path& path, const Model& 
   if (!in) throw std::runtime_error(path.string() + ": cannot open");
   std::vector<LogLine> lines;
   CandumpRecord record;
+  // The first few lines of each kind of damage, with line numbers; the counts say the rest.
+  const auto warn = [&](std::int64_t count, std::int64_t number, const std::string& what) {
+    if (count <= 5) {
+      record.warnings.push_back(path.string() + ":" + std::to_string(number) + ": " + what);
+    }
+  };
   std::string text;
+  double last_time_s = -std::numeric_limits<double>::infinity();
   for (std::int64_t number = 1; std::getline(in, text); ++number) {
     if (text.empty()) continue;
     std::optional<LogLine> line = ParseLine(text);
     if (!line) {
-      if (++record.malformed_lines <= 5) {
-        record.warnings.push_back(path.string() + ":" + std::to_string(number) +
-                                  ": not a candump -l line, skipped: " + text.substr(0, 60));
-      }
+      warn(++record.malformed_lines, number,
+           "not a candump -l line, skipped: " + text.substr(0, 60));
       continue;
     }
+    // stod reads "nan" and "inf"; such a time cannot place a frame at a step.
+    if (!std::isfinite(line->time_s)) {
+      warn(++record.malformed_lines, number,
+           "the receive time is not a finite number, skipped: " + text.substr(0, 60));
+      continue;
+    }
+    // candump stamps the frames of one bus in order: an earlier time means an edited or merged
+    // log, whose frames would be applied out of order.
+    if (line->time_s < last_time_s) {
+      warn(++record.out_of_order_lines, number,
+           fmt::format("the receive time {:.6f} s is before the previous line's {:.6f} s, "
+                       "skipped",
+                       line->time_s, last_time_s));
+      continue;
+    }
+    last_time_s = line->time_s;
+    line->number = number;
     lines.push_back(*line);
   }
   record.frames = static_cast<std::int64_t>(lines.size());
@@ -142,9 +168,22 @@ CandumpRecord ReadCandumpRecord(const std::filesystem::path& path, const Model& 
   FrameMapCounters counters;
   EmulatorOutputs outputs;
   std::int64_t last_step = 0;
+  // Frames after the run's end cannot act on it; the bound also keeps the time-to-step
+  // conversions below inside int64 for any finite time.
+  const std::int64_t last_period = model.total_steps / substeps + 1;
   for (const LogLine& l : lines) {
     if (l.time_s < *t0) continue;
     const double since = l.time_s - *t0;
+    if (!(since / period_s < static_cast<double>(last_period))) {
+      if (++record.frames_after_end == 1) {
+        record.warnings.push_back(fmt::format(
+            "{}:{}: the frames from {:.6g} s after the first sensor frame on are beyond the "
+            "run's {:.6g} s and are not used",
+            path.string(), l.number, since,
+            static_cast<double>(model.total_steps) * model.params.simulation.step_s));
+      }
+      continue;
+    }
     const std::uint64_t fails = command.power_fail_frames;
     const std::uint64_t restores = command.power_restore_frames;
     const auto before = command.current_A;

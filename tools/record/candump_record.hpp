@@ -28,15 +28,20 @@ struct CandumpRecord {
   std::int64_t frames = 0;               ///< frames read
   std::int64_t controller_frames = 0;    ///< currents and trigger frames applied
   std::int64_t unknown_frames = 0;       ///< ids the frame map does not know (or malformed)
-  std::vector<std::string> warnings;     ///< malformed lines (first few, with line numbers)
-  std::int64_t malformed_lines = 0;
+  std::vector<std::string> warnings;     ///< rejected lines (first few, with line numbers)
+  std::int64_t malformed_lines = 0;      ///< not candump -l, or a receive time not finite
+  std::int64_t out_of_order_lines = 0;   ///< a receive time before the previous line's
+  std::int64_t frames_after_end = 0;     ///< received after the run's configured end
+  /// Lines were rejected: the replay misses some of what the bus carried.
+  bool damaged() const { return malformed_lines > 0 || out_of_order_lines > 0; }
 };
 
 /// True if the file looks like a candump -l log (its first line starts with "(").
 bool IsCandumpLog(const std::filesystem::path& path);
 
 /// Reads the log. Throws std::runtime_error if the file cannot be read or holds no sensor frame
-/// of the map (no time zero); malformed lines are counted and skipped.
+/// of the map (no time zero); malformed lines (a receive time that is not finite included),
+/// lines whose time goes back, and frames after the run's end are counted and skipped.
 CandumpRecord ReadCandumpRecord(const std::filesystem::path& path, const Model& model,
                                 const CanConfig& can);
 

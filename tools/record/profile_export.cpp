@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "controller_if/current_profile.hpp"
@@ -102,13 +103,19 @@ ProfileExport ExportCurrentProfile(const RunRecordFile& record, const std::strin
   const int ambs = static_cast<int>(params.ambs.size());
   if (ambs == 0) throw std::runtime_error(record_path + ": the recorded rig has no AMB");
   const std::size_t max_points = std::clamp<std::size_t>(window.max_points, 2, kMaxProfilePoints);
-  const std::int64_t end = record.run.end_step;
-  const std::int64_t from = std::llround(window.from_s / dt);
-  const std::int64_t to = window.to_s < 0.0 ? end : std::llround(window.to_s / dt);
-  if (from < 0 || to > end || to <= from) {
+  // The record's end is bounded by its header; its config bounds it too.
+  const std::int64_t end =
+      std::min<std::int64_t>(record.run.end_step, std::llround(params.simulation.duration_s / dt));
+  // Compared in steps as doubles first: llround is undefined beyond int64.
+  const double end_steps = static_cast<double>(end) + 0.5;
+  const bool inside = window.from_s >= 0.0 && window.from_s / dt < end_steps &&
+                      (window.to_s < 0.0 || window.to_s / dt < end_steps);
+  const std::int64_t from = inside ? std::llround(window.from_s / dt) : 0;
+  const std::int64_t to = !inside || window.to_s < 0.0 ? end : std::llround(window.to_s / dt);
+  if (!inside || from < 0 || to > end || to <= from) {
     throw std::runtime_error(fmt::format(
         "the profile window {} s to {} s is not inside the record, which covers 0 s to {} s",
-        from * dt, to * dt, end * dt));
+        window.from_s, window.to_s < 0.0 ? end * dt : window.to_s, end * dt));
   }
 
   ProfileExport out;

@@ -1,6 +1,9 @@
 #include "tools/record/run_record_reader.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "ambdrop_lcm/emulator_state_t.hpp"
@@ -17,10 +20,40 @@
 namespace ambdrop {
 namespace {
 
+// lcm-gen's decoders trust a string's length prefix: 0 asks std::string for SIZE_MAX bytes
+// (std::length_error), INT32_MIN overflows `len - 1`. The strings of our types lead the message
+// (after the 8-byte fingerprint), so they are checked here, before the generated code sees them.
+bool LeadingStringsSound(const std::vector<std::uint8_t>& data, int strings) {
+  std::size_t pos = 8;
+  for (int i = 0; i < strings; ++i) {
+    if (data.size() < pos + 4) return false;
+    const std::int64_t length = static_cast<std::int32_t>(
+        (std::uint32_t{data[pos]} << 24) | (std::uint32_t{data[pos + 1]} << 16) |
+        (std::uint32_t{data[pos + 2]} << 8) | std::uint32_t{data[pos + 3]});
+    pos += 4;
+    // The length counts the terminating NUL, which must be there.
+    if (length < 1 || static_cast<std::uint64_t>(length) > data.size() - pos) return false;
+    pos += static_cast<std::size_t>(length);
+    if (data[pos - 1] != 0) return false;
+  }
+  return true;
+}
+
 template <typename Message>
-bool Decode(const LogEvent& event, Message* out) {
-  const int n = out->decode(event.data.data(), 0, static_cast<int>(event.data.size()));
-  return n == static_cast<int>(event.data.size());
+bool Decode(const LogEvent& event, Message* out, int leading_strings = 0) {
+  if (!LeadingStringsSound(event.data, leading_strings)) return false;
+  try {
+    const int n = out->decode(event.data.data(), 0, static_cast<int>(event.data.size()));
+    return n == static_cast<int>(event.data.size());
+  } catch (const std::exception&) {  // the reader reports damage, it does not throw it
+    return false;
+  }
+}
+
+// A header whose numbers could not come from a run: a replay would divide by them or loop on them.
+bool HeaderSound(const ambdrop_lcm::record_header_t& h) {
+  return std::isfinite(h.step_s) && h.step_s > 0.0 && h.total_steps >= 0 &&
+         h.sensor_every_steps >= 0 && h.output_every_steps >= 1;
 }
 
 std::string At(const LogEvent& e) {
@@ -36,7 +69,14 @@ class Builder {
     const std::string& ch = e.channel;
     if (ch == kRecHeaderChannel) {
       ambdrop_lcm::record_header_t h{};
-      if (!Decode(e, &h)) return Bad(e, "header");
+      if (!Decode(e, &h, 5)) return Bad(e, "header");
+      if (!HeaderSound(h)) {
+        return Bad(
+            e, "header",
+            fmt::format("step_s {}, total_steps {}, sensor_every_steps {}, "
+                        "output_every_steps {} cannot come from a run",
+                        h.step_s, h.total_steps, h.sensor_every_steps, h.output_every_steps));
+      }
       RecordHeader& r = file_->header;
       r.ambdrop_version = h.ambdrop_version;
       r.source = h.source;
@@ -117,7 +157,7 @@ class Builder {
       file_->states.push_back(s);
     } else if (ch == kRecFooterChannel) {
       ambdrop_lcm::record_footer_t m{};
-      if (!Decode(e, &m)) return Bad(e, "footer");
+      if (!Decode(e, &m, 1)) return Bad(e, "footer");
       RecordFooter f;
       f.status = m.status;
       f.final_step = m.final_step;
@@ -136,15 +176,24 @@ class Builder {
   std::int64_t last_step() const { return last_step_; }
 
  private:
-  bool Bad(const LogEvent& e, const char* what) {
-    file_->warnings.push_back(At(e) + ": the " + std::string(what) +
-                              " message does not decode; the record is used up to it");
+  bool Bad(const LogEvent& e, const char* what, const std::string& why = "does not decode") {
+    file_->damaged = true;
+    file_->warnings.push_back(At(e) + ": the " + std::string(what) + " message " + why +
+                              "; the record is used up to it");
     return false;
   }
   bool InOrder(const LogEvent& e, std::int64_t step) {
     if (step < 0 || step < last_step_) {
       file_->warnings.push_back(At(e) + ": step " + std::to_string(step) +
                                 " goes back in time; the record is used up to it");
+      return false;
+    }
+    // An event past the configured end cannot come from the run; a replay would run to it.
+    if (step > file_->header.total_steps) {
+      file_->damaged = true;
+      file_->warnings.push_back(
+          At(e) + ": step " + std::to_string(step) + " is beyond the run's configured " +
+          std::to_string(file_->header.total_steps) + " steps; the record is used up to it");
       return false;
     }
     last_step_ = step;
@@ -243,6 +292,14 @@ RunRecordFile ReadRunRecord(const std::filesystem::path& path) {
   }
   if (!builder.has_start()) {
     throw std::runtime_error(path.string() + ": the record holds no start event");
+  }
+  const bool footer_in_range = file.footer && file.footer->final_step >= builder.last_step() &&
+                               file.footer->final_step <= file.header.total_steps;
+  if (file.footer && !file.damaged && !footer_in_range) {
+    file.damaged = true;
+    file.warnings.push_back(fmt::format(
+        "the footer's final step {} is outside the recorded steps {}..{}: it is not used",
+        file.footer->final_step, builder.last_step(), file.header.total_steps));
   }
   if (file.footer && !file.damaged) {
     file.run.end_step = file.footer->final_step;
