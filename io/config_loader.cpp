@@ -81,7 +81,8 @@ LoadedConfig LoadConfigFromString(const std::string& text, const std::string& so
   std::ostringstream effective;
   effective << root << '\n';
   loaded.effective_toml = effective.str();
-  const TableReader root_reader(root, "", source_name);
+  KeyLog keys;
+  const TableReader root_reader(root, "", source_name, &keys);
   loaded.params = ReadModel(root_reader);
   loaded.realtime = ReadRealtimeConfig(root_reader);
   if (const std::optional<TableReader> scenario = root_reader.OptionalTable("scenario")) {
@@ -94,6 +95,7 @@ LoadedConfig LoadConfigFromString(const std::string& text, const std::string& so
     const CanNames names = CanNamesOf(loaded.params);
     loaded.can = ReadCanConfig(*can, &names);
   }
+  loaded.keys = keys.Take();
   return loaded;
 }
 

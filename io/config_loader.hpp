@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "io/config_can.hpp"
+#include "io/config_keys.hpp"
 #include "io/config_measurement.hpp"
 #include "io/config_realtime.hpp"
 #include "rt_core/model_params.hpp"
@@ -34,6 +35,9 @@ struct LoadedConfig {
   /// record's columns map onto the model, for `ambdrop fit`. Its names are the model's, indexed
   /// in params' order.
   std::optional<MeasurementParams> measurement;
+  /// Every number the readers took (or defaulted), with its `--set` path, unit, class and
+  /// accepted range: the key registry (io/config_keys.hpp).
+  std::vector<ConfigKey> keys;
   std::string source_path;
   std::string source_text;     ///< the file as read
   std::string effective_toml;  ///< after --set overrides, re-serialised

@@ -181,8 +181,26 @@ double ReadNumber(const toml::node& node, std::string_view fallback_source,
   return value;
 }
 
-TableReader::TableReader(const toml::table& table, std::string path, std::string source_name)
-    : table_(&table), path_(std::move(path)), source_name_(std::move(source_name)) {}
+TableReader::TableReader(const toml::table& table, std::string path, std::string source_name,
+                         KeyLog* log)
+    : table_(&table), path_(std::move(path)), source_name_(std::move(source_name)), log_(log) {}
+
+void TableReader::Log(std::string_view key, double value, const NumberRule& rule,
+                      const toml::node* node) const {
+  if (log_ == nullptr) return;
+  ConfigKey k;
+  k.path = KeyPath(key);
+  k.unit = KeyUnit(key);
+  k.key_class = ClassOfKey(k.path);
+  k.value = value;
+  k.declared = node != nullptr;
+  k.lower = rule.lower;
+  k.upper = rule.upper;
+  k.lower_inclusive = rule.lower_inclusive;
+  k.upper_inclusive = rule.upper_inclusive;
+  if (node != nullptr) k.location = NodeLocation(*node, source_name_);
+  log_->Record(std::move(k));
+}
 
 std::string TableReader::KeyPath(std::string_view key) const {
   return path_.empty() ? std::string(key) : fmt::format("{}.{}", path_, key);
@@ -213,11 +231,18 @@ const toml::node& TableReader::Require(std::string_view key, std::string_view ex
 
 double TableReader::Number(std::string_view key, const NumberRule& rule) const {
   const std::string expected = ExpectedWithUnit(rule.what, key);
-  return ReadNumber(Require(key, expected), source_name_, KeyPath(key), rule, expected);
+  const toml::node& node = Require(key, expected);
+  const double value = ReadNumber(node, source_name_, KeyPath(key), rule, expected);
+  Log(key, value, rule, &node);
+  return value;
 }
 
 double TableReader::Number(std::string_view key, const NumberRule& rule, double fallback) const {
-  return OptionalNumber(key, rule).value_or(fallback);
+  if (std::optional<double> value = OptionalNumber(key, rule)) return *value;
+  // A default the key itself may not take is a sentinel, not a number to fit: infinite for
+  // "none" (no current limit), 0 for "derived from other keys" (a 4-DOF bearing's kq).
+  if (std::isfinite(fallback) && rule.Accepts(fallback)) Log(key, fallback, rule, nullptr);
+  return fallback;
 }
 
 std::optional<double> TableReader::OptionalNumber(std::string_view key,
@@ -286,7 +311,7 @@ TableReader TableReader::Table(std::string_view key) const {
   const std::string expected = fmt::format("a table ([{}])", KeyPath(key));
   const toml::node& node = Require(key, expected);
   if (!node.is_table()) Fail(key, expected);
-  return TableReader(*node.as_table(), KeyPath(key), source_name_);
+  return TableReader(*node.as_table(), KeyPath(key), source_name_, log_);
 }
 
 std::optional<TableReader> TableReader::OptionalTable(std::string_view key) const {
@@ -307,7 +332,7 @@ std::vector<std::pair<std::string, TableReader>> TableReader::NamedTables(
       ThrowBadValue(child, source_name_, child_path, fmt::format("a table ([{}])", child_path));
     }
     out.emplace_back(std::string(name.str()),
-                     TableReader(*child.as_table(), child_path, source_name_));
+                     TableReader(*child.as_table(), child_path, source_name_, log_));
   }
   return out;
 }
@@ -325,7 +350,7 @@ std::vector<TableReader> TableReader::TableArray(std::string_view key) const {
       ThrowBadValue(array[i], source_name_, element_path,
                     fmt::format("a table (an element of [[{}]])", path));
     }
-    out.emplace_back(*array[i].as_table(), element_path, source_name_);
+    out.emplace_back(*array[i].as_table(), element_path, source_name_, log_);
   }
   return out;
 }

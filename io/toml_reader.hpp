@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "io/config_keys.hpp"
+
 namespace ambdrop::config_detail {
 
 /// Overridden nodes carry "--set path=value" as their source path, so that errors about them
@@ -62,7 +64,10 @@ double ReadNumber(const toml::node& node, std::string_view fallback_source,
 /// View of one table at a dotted path; cheap to copy, refers to the parsed document.
 class TableReader {
  public:
-  TableReader(const toml::table& table, std::string path, std::string source_name);
+  /// `log` (optional) records every number read through this reader and the readers of its
+  /// sub-tables: the config's key registry (io/config_keys.hpp).
+  TableReader(const toml::table& table, std::string path, std::string source_name,
+              KeyLog* log = nullptr);
 
   const std::string& path() const { return path_; }
   const std::string& source_name() const { return source_name_; }
@@ -110,10 +115,13 @@ class TableReader {
 
  private:
   const toml::node& Require(std::string_view key, std::string_view expected) const;
+  void Log(std::string_view key, double value, const NumberRule& rule,
+           const toml::node* node) const;
 
   const toml::table* table_;
   std::string path_;
   std::string source_name_;
+  KeyLog* log_ = nullptr;
 };
 
 }  // namespace ambdrop::config_detail

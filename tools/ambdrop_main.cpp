@@ -11,6 +11,7 @@
 #include "tools/exit_codes.hpp"
 #include "tools/fit_command.hpp"
 #include "tools/hil_command.hpp"
+#include "tools/keys_command.hpp"
 #include "tools/measure_command.hpp"
 #include "tools/modes_command.hpp"
 #include "tools/replay_command.hpp"
@@ -153,6 +154,16 @@ int main(int argc, char** argv) {
   modes_command->add_option("--out", modes.out_dir, "Output directory")
       ->type_name("DIR")
       ->capture_default_str();
+
+  ambdrop::KeysOptions keys;
+  CLI::App* keys_command = app.add_subcommand(
+      "keys", "Every number of a config: its --set path, value, unit, class and fit range");
+  keys_command->add_option("CONFIG", keys.config_path, "TOML config file")->required();
+  AddSetOption(keys_command, &keys.overrides);
+  keys_command->add_option("--class", keys.key_class, "Only keys of this class")
+      ->type_name("CLASS")
+      ->check(CLI::IsMember({"physical", "measurement", "solver", "run", "interface"}));
+  keys_command->add_flag("--json", keys.json, "JSON on stdout instead of the table");
 
   ambdrop::HilCommandOptions hil;
   CLI::App* hil_command = app.add_subcommand(
@@ -356,6 +367,7 @@ int main(int argc, char** argv) {
     if (validate_command->parsed()) return ambdrop::RunValidateCommand(validate);
     if (measure_command->parsed()) return ambdrop::RunMeasureCommand(measure);
     if (fit_command->parsed()) return ambdrop::RunFitCommand(fit);
+    if (keys_command->parsed()) return ambdrop::RunKeysCommand(keys);
     if (modes_command->parsed()) {
       if (speed_option->count() > 0) modes.speed_rpm = speed_rpm;
       return ambdrop::RunModesCommand(modes);

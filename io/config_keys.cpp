@@ -1,0 +1,138 @@
+#include "io/config_keys.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <utility>
+
+#include "io/toml_reader.hpp"
+
+namespace ambdrop {
+namespace {
+
+bool StartsWith(std::string_view path, std::string_view prefix) {
+  return path.substr(0, prefix.size()) == prefix;
+}
+
+bool HasSegment(std::string_view path, std::string_view segment) {
+  std::size_t at = 0;
+  while ((at = path.find(segment, at)) != std::string_view::npos) {
+    const bool starts = at == 0 || path[at - 1] == '.';
+    const std::size_t end = at + segment.size();
+    const bool ends = end == path.size() || path[end] == '.' || path[end] == '[';
+    if (starts && ends) return true;
+    at = end;
+  }
+  return false;
+}
+
+std::string_view LastSegment(std::string_view path) {
+  const std::size_t dot = path.rfind('.');
+  return dot == std::string_view::npos ? path : path.substr(dot + 1);
+}
+
+// A span a quantity of this unit may plausibly be off by when it is declared 0 (an offset, a
+// drag, a phase): wide enough to hold what a real machine shows, narrow enough for a search.
+double ZeroSpan(std::string_view unit) {
+  static constexpr std::array<std::pair<std::string_view, double>, 14> kSpans = {{
+      {"m", 1e-4},  // offsets, runout: a tenth of a millimetre
+      {"rad", std::numbers::pi},
+      {"N m", 0.1},     // drag torques
+      {"N m s", 1e-3},  // viscous torques
+      {"A", 1.0},       // current offsets
+      {"s", 1e-3},      // delays, time constants
+      {"N", 100.0},
+      {"N/m", 1e6},
+      {"N s/m", 1e3},
+      {"Hz", 100.0},
+      {"kg", 0.1},
+      {"kg m", 1e-4},  // unbalance
+      {"kg m^2", 1e-3},
+      {"", 0.1},  // coefficients and ratios
+  }};
+  for (const auto& [u, span] : kSpans) {
+    if (u == unit) return span;
+  }
+  return 1.0;
+}
+
+}  // namespace
+
+std::string KeyUnit(std::string_view key) {
+  std::string unit = config_detail::UnitOfKey(key);
+  if (!unit.empty()) return unit;
+  // Units the error messages do not spell out but a fit range needs.
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 4> kMore = {{
+      {"_kg_m", "kg m"},
+      {"_Hz", "Hz"},
+      {"_T", "T"},
+      {"_N_m_s2", "N m s^2"},
+  }};
+  for (const auto& [suffix, u] : kMore) {
+    if (key.ends_with(suffix)) return std::string(u);
+  }
+  return {};
+}
+
+const char* KeyClassName(KeyClass key_class) noexcept {
+  switch (key_class) {
+    case KeyClass::kPhysical:
+      return "physical";
+    case KeyClass::kMeasurement:
+      return "measurement";
+    case KeyClass::kSolver:
+      return "solver";
+    case KeyClass::kRun:
+      return "run";
+    case KeyClass::kInterface:
+      return "interface";
+  }
+  return "unknown";
+}
+
+KeyClass ClassOfKey(std::string_view path) {
+  // The spin at the start is the run's operating point, as the trigger time is its event.
+  if (path == "simulation.spin_speed_rad_s") return KeyClass::kRun;
+  if (StartsWith(path, "simulation.")) return KeyClass::kSolver;
+  if (path == "controller.rate_Hz") return KeyClass::kSolver;
+  if (StartsWith(path, "trigger.") || StartsWith(path, "scenario.")) return KeyClass::kRun;
+  if (StartsWith(path, "can.") || StartsWith(path, "realtime.")) return KeyClass::kInterface;
+  if (StartsWith(path, "measurement.")) return KeyClass::kMeasurement;
+  // How the sensors are observed, not where or how they sit: noise and its seed, quantisation.
+  if (HasSegment(path, "noise") || HasSegment(path, "quantisation")) {
+    return KeyClass::kMeasurement;
+  }
+  const std::string_view last = LastSegment(path);
+  if (last == "seed" || last == "elements" || last == "modes") return KeyClass::kSolver;
+  return KeyClass::kPhysical;
+}
+
+FitRange DefaultFitRange(const ConfigKey& key) {
+  const double v = key.value;
+  const double span = ZeroSpan(key.unit);
+  FitRange r;
+  if (key.unit == "rad") {
+    r = {v - std::numbers::pi, v + std::numbers::pi};  // an angle: any value
+  } else if (key.lower >= 0.0) {
+    // A size: off by a factor of two either way, or from nothing to a plausible size.
+    r = v > 0.0 ? FitRange{0.5 * v, 2.0 * v} : FitRange{0.0, span};
+  } else {
+    const double half_width = std::max(0.5 * std::abs(v), span);
+    r = {v - half_width, v + half_width};
+  }
+  r.lower = std::max(r.lower, key.lower);
+  r.upper = std::min(r.upper, key.upper);
+  if (!key.lower_inclusive && r.lower <= key.lower) r.lower = std::nextafter(key.lower, r.upper);
+  if (!key.upper_inclusive && r.upper >= key.upper) r.upper = std::nextafter(key.upper, r.lower);
+  return r;
+}
+
+void KeyLog::Record(ConfigKey key) {
+  const auto same = std::find_if(keys_.begin(), keys_.end(),
+                                 [&](const ConfigKey& k) { return k.path == key.path; });
+  if (same != keys_.end()) keys_.erase(same);
+  keys_.push_back(std::move(key));
+}
+
+}  // namespace ambdrop
