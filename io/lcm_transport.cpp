@@ -170,6 +170,7 @@ LcmEndpointCounters LcmEndpoint::counters() const noexcept {
   c.malformed_decode = malformed_decode_.load(kRelaxed);
   c.malformed_range = malformed_range_.load(kRelaxed);
   c.malformed_non_finite = malformed_non_finite_.load(kRelaxed);
+  c.malformed_current_bound = malformed_current_bound_.load(kRelaxed);
   c.currents_sequence_jumps = currents_sequence_jumps_.load(kRelaxed);
   c.currents_ring_full = currents_.dropped();
   c.triggers_ring_full = triggers_.dropped();
@@ -224,6 +225,13 @@ void LcmEndpoint::HandleCurrents(const void* data, std::size_t size) noexcept {
   if (!finite) {
     malformed_non_finite_.fetch_add(1, std::memory_order_relaxed);
     return;
+  }
+  for (int i = 0; i < msg.amb_count; ++i) {
+    const double bound = options_.current_bound_A[i];
+    if (std::abs(msg.current_x_A[i]) > bound || std::abs(msg.current_y_A[i]) > bound) {
+      malformed_current_bound_.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
   }
 
   if (have_sequence_ && msg.sequence != last_sequence_ + 1) {

@@ -1,8 +1,10 @@
 #pragma once
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <thread>
@@ -33,6 +35,14 @@ struct LcmEndpointOptions {
   /// is asleep, ~1 us; lowest latency). > 0: the publish thread polls at this period instead and
   /// the real-time pushes make no system call at all, at the cost of up to one period of latency.
   std::chrono::microseconds publish_poll_period{0};
+  /// Per AMB: a current (x or y) of larger magnitude is rejected and counted, as a NaN is. A
+  /// finite 1e300 A would otherwise reach the force law (`ambdrop hil` sets a multiple of the
+  /// AMB's current_limit_A).
+  std::array<double, kMaxAmbs> current_bound_A = [] {
+    std::array<double, kMaxAmbs> bound{};
+    bound.fill(std::numeric_limits<double>::infinity());
+    return bound;
+  }();
 };
 
 /// Counter snapshot. Every message or record is counted exactly once per line below, so e.g.
@@ -43,6 +53,7 @@ struct LcmEndpointCounters {
   std::uint64_t malformed_decode = 0;      ///< not decodable as the channel's type (bad hash, size)
   std::uint64_t malformed_range = 0;       ///< count or mask out of range
   std::uint64_t malformed_non_finite = 0;  ///< NaN or infinite current
+  std::uint64_t malformed_current_bound = 0;  ///< finite current beyond current_bound_A
   std::uint64_t currents_sequence_jumps = 0;  ///< sequence != previous + 1 (loss or restart)
   std::uint64_t currents_ring_full = 0;       ///< valid currents dropped: the real-time side lagged
   std::uint64_t triggers_ring_full = 0;       ///< valid triggers dropped: the real-time side lagged
@@ -162,6 +173,7 @@ class LcmEndpoint {
   std::atomic<std::uint64_t> malformed_decode_{0};
   std::atomic<std::uint64_t> malformed_range_{0};
   std::atomic<std::uint64_t> malformed_non_finite_{0};
+  std::atomic<std::uint64_t> malformed_current_bound_{0};
   std::atomic<std::uint64_t> currents_sequence_jumps_{0};
   std::atomic<std::uint64_t> receive_errors_{0};
   // Publish-thread counters.

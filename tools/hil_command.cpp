@@ -250,9 +250,20 @@ int RunHilCommand(const HilCommandOptions& options) {
   json.BeginObject();
   json.Key("config").String(options.config_path);
   // A run whose outputs failed is not ok, even if the loop was.
-  json.Key("status").String(session.stop() == HilStop::kDuration && !output_error.empty()
-                                ? "output_error"
-                                : StopName(session.stop()));
+  // Controller messages refused (not decodable, out of range, a current not finite or beyond
+  // its bound) make a run not ok: the loop went on with the last good currents, not with what
+  // the controller sent, so this is not the run that was asked for. They do not stop it (the
+  // watchdog catches a controller that sends nothing usable); the "lcm" block counts each kind.
+  const std::uint64_t rejected = links.RejectedControllerMessages();
+  std::string status = StopName(session.stop());
+  if (session.stop() == HilStop::kDuration) {
+    if (!output_error.empty()) {
+      status = "output_error";
+    } else if (rejected > 0) {
+      status = "controller_messages_rejected";
+    }
+  }
+  json.Key("status").String(status);
   json.Key("output_error");
   if (output_error.empty()) {
     json.Null();
@@ -304,8 +315,14 @@ int RunHilCommand(const HilCommandOptions& options) {
         static_cast<double>(loop->compute().max_ns()) / 1e3);
   }
   if (!output_error.empty()) fmt::print(stderr, "error: {}\n", output_error);
+  if (rejected > 0) {
+    fmt::print(stderr,
+               "error: {} controller messages were refused (malformed, or a current not finite "
+               "or beyond its bound): see the \"lcm\" block of {}\n",
+               rejected, (out_dir / "summary.json").string());
+  }
   if (session.stop() == HilStop::kDiverged) return kExitRunFailed;
-  return output_error.empty() ? kExitOk : kExitError;
+  return output_error.empty() && rejected == 0 ? kExitOk : kExitError;
 }
 
 }  // namespace ambdrop

@@ -77,6 +77,35 @@ void WriteCanCounters(JsonWriter& json, const char* key, const CanControllerLink
   json.EndObject();
 }
 
+void WriteLcmCounters(JsonWriter& json, const LcmEndpointCounters& c) {
+  const auto integer = [&json](const char* name, std::uint64_t value) {
+    json.Key(name).Integer(static_cast<std::int64_t>(value));
+  };
+  json.Key("lcm").BeginObject();
+  integer("currents_received", c.currents_received);
+  integer("triggers_received", c.triggers_received);
+  integer("malformed_decode", c.malformed_decode);
+  integer("malformed_range", c.malformed_range);
+  integer("malformed_non_finite", c.malformed_non_finite);
+  integer("malformed_current_bound", c.malformed_current_bound);
+  integer("currents_sequence_jumps", c.currents_sequence_jumps);
+  integer("currents_ring_full", c.currents_ring_full);
+  integer("triggers_ring_full", c.triggers_ring_full);
+  integer("sensors_published", c.sensors_published);
+  integer("sensors_ring_full", c.sensors_ring_full);
+  integer("states_published", c.states_published);
+  integer("states_ring_full", c.states_ring_full);
+  integer("publish_rejected", c.publish_rejected);
+  integer("publish_errors", c.publish_errors);
+  integer("receive_errors", c.receive_errors);
+  json.EndObject();
+}
+
+// A controller may ask for more than the amplifier gives (the model clips at current_limit_A);
+// ten times that, or 10 kA on an AMB that declares no limit, is a broken sender.
+constexpr double kCurrentBoundOverLimit = 10.0;
+constexpr double kCurrentBoundWithoutLimit_A = 1e4;
+
 }  // namespace
 
 GpioTriggerSpec ParseGpioTrigger(const std::string& text) {
@@ -127,7 +156,15 @@ void HilLinks::Stop() {
   if (lcm) lcm->Stop();
 }
 
+std::uint64_t HilLinks::RejectedControllerMessages() const {
+  if (!lcm) return 0;
+  const LcmEndpointCounters c = lcm->counters();
+  return c.malformed_decode + c.malformed_range + c.malformed_non_finite +
+         c.malformed_current_bound;
+}
+
 void HilLinks::WriteSummary(JsonWriter& json) const {
+  if (lcm) WriteLcmCounters(json, lcm->counters());
   if (can_link != nullptr) WriteCanCounters(json, "can", *can_link, *can_bus);
   if (can_trigger != nullptr) WriteCanCounters(json, "can_trigger", *can_trigger, *can_trigger_bus);
   if (gpio_trigger) {
@@ -158,6 +195,11 @@ HilLinks MakeHilLinks(const LoadedConfig& config, const Model& model, const std:
   } else if (controller == "lcm" || StartsWith(controller, "lcm:")) {
     LcmEndpointOptions lcm_options;
     if (controller.size() > 4) lcm_options.url = controller.substr(4);
+    for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+      const double limit = model.params.ambs[a].current_limit_A;
+      lcm_options.current_bound_A[a] =
+          std::isfinite(limit) ? kCurrentBoundOverLimit * limit : kCurrentBoundWithoutLimit_A;
+    }
     links.lcm = std::make_unique<LcmEndpoint>(lcm_options);
     links.lcm->Start();
     auto link = std::make_unique<LcmControllerLink>(links.lcm.get(),

@@ -21,6 +21,7 @@
 //                                power coming back), mirror=LINE (an output on the same chip
 //                                driven to 1 while the rotor is dropped)
 //   (none)                       the config's [trigger] schedule
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -65,8 +66,12 @@ struct HilLinks {
 
   /// Stops the I/O threads (LCM) after the run.
   void Stop();
-  /// Writes the CAN ("can", "can_trigger") and GPIO ("gpio_trigger") counters, when used.
+  /// Writes the LCM ("lcm"), CAN ("can", "can_trigger") and GPIO ("gpio_trigger") counters,
+  /// when used.
   void WriteSummary(JsonWriter& json) const;
+  /// Controller messages received and refused (LCM: not decodable, counts out of range, a
+  /// current not finite or beyond its bound).
+  std::uint64_t RejectedControllerMessages() const;
 };
 
 /// Builds the links for `--controller` and `--trigger`. `config` (its [can] frame map) and
