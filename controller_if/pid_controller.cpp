@@ -32,8 +32,14 @@ double PidAxis::Update(double reading_m) noexcept {
 }
 
 ReferenceController::ReferenceController(const Model& model, double period_s)
-    : ambs_(static_cast<int>(model.params.ambs.size())) {
-  const PidParams& pid = model.params.controller.pid;
+    : linear_form_(model.params.controller.form == ControllerForm::kLinear),
+      delayed_(model.params.controller.delay_samples > 0),
+      amplified_(model.params.controller.amplifier.enabled),
+      ambs_(static_cast<int>(model.params.ambs.size())) {
+  const ControllerParams& controller = model.params.controller;
+  const PidParams& pid = controller.pid;
+  const bool feedforward =
+      linear_form_ ? controller.linear.gravity_feedforward : pid.gravity_feedforward;
   for (int a = 0; a < ambs_; ++a) {
     const AmbParams& amb = model.params.ambs[a];
     if (amb.law == AmbForceLaw::kEquivalent) {
@@ -51,10 +57,16 @@ ReferenceController::ReferenceController(const Model& model, double period_s)
     }
     const double limit = LimitedCurrent(amb, std::numeric_limits<double>::infinity());
     for (int axis = 0; axis < 2; ++axis) {
-      feedforward_A_[a][axis] = pid.gravity_feedforward
-                                    ? CurrentForStaticForce(amb, model.amb_bias_force_N[a][axis])
-                                    : 0.0;
-      axes_[a][axis] = PidAxis(pid, period_s, feedforward_A_[a][axis], limit);
+      feedforward_A_[a][axis] =
+          feedforward ? CurrentForStaticForce(amb, model.amb_bias_force_N[a][axis]) : 0.0;
+      const double start_A = feedforward_A_[a][axis];
+      if (linear_form_) {
+        linear_[a][axis] = LinearAxis(controller.linear, period_s, start_A, limit);
+      } else {
+        axes_[a][axis] = PidAxis(pid, period_s, start_A, limit);
+      }
+      delay_[a][axis] = CommandDelay(controller.delay_samples, start_A);
+      if (amplified_) amplifier_[a][axis] = AmplifierLoop(controller.amplifier, period_s, start_A);
     }
   }
 }
@@ -62,8 +74,12 @@ ReferenceController::ReferenceController(const Model& model, double period_s)
 void ReferenceController::Update(const SensorReadings& readings, ControlInput* input) noexcept {
   for (int a = 0; a < ambs_; ++a) {
     for (int axis = 0; axis < 2; ++axis) {
-      input->amb[a].current_A[axis] =
-          axes_[a][axis].Update(readings.reading_m[sensor_index_[a]][axis]);
+      const double reading = readings.reading_m[sensor_index_[a]][axis];
+      double current =
+          linear_form_ ? linear_[a][axis].Update(reading) : axes_[a][axis].Update(reading);
+      if (delayed_) current = delay_[a][axis].Push(current);
+      if (amplified_) current = amplifier_[a][axis].Update(current);
+      input->amb[a].current_A[axis] = current;
     }
   }
 }

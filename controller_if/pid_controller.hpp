@@ -1,6 +1,9 @@
 #pragma once
 #include <array>
 
+#include "controller_if/amplifier_loop.hpp"
+#include "controller_if/command_delay.hpp"
+#include "controller_if/discrete_controller.hpp"
 #include "controller_if/sensor_emulator.hpp"
 #include "rt_core/control_input.hpp"
 #include "rt_core/model.hpp"
@@ -30,10 +33,14 @@ class PidAxis {
   bool primed_ = false;
 };
 
-/// The in-process reference controller: a PidAxis per AMB axis fed by the AMB's sensor plane
-/// (AmbParams::sensor), with the gravity feedforward the model computed.
+/// The in-process controller: per AMB axis, a PidAxis ([controller.pid]) or a LinearAxis
+/// ([controller.linear]) fed by the AMB's sensor plane (AmbParams::sensor), with the gravity
+/// feedforward the model computed; then the computation delay and the amplifier loop, when the
+/// config asks for them. Every in-process driver (sim, scenario, hil internal, the fit, the
+/// stand-in controllers) builds it from the model, so all run the same controller.
 class ReferenceController {
  public:
+  /// Throws std::invalid_argument for a controller the model cannot carry.
   ReferenceController(const Model& model, double period_s);
   /// New control currents from one sample of the sensors.
   void Update(const SensorReadings& readings, ControlInput* input) noexcept;
@@ -42,6 +49,12 @@ class ReferenceController {
 
  private:
   std::array<std::array<PidAxis, 2>, kMaxAmbs> axes_{};
+  std::array<std::array<LinearAxis, 2>, kMaxAmbs> linear_{};
+  std::array<std::array<CommandDelay, 2>, kMaxAmbs> delay_{};
+  std::array<std::array<AmplifierLoop, 2>, kMaxAmbs> amplifier_{};
+  bool linear_form_ = false;
+  bool delayed_ = false;
+  bool amplified_ = false;
   std::array<std::array<double, 2>, kMaxAmbs> feedforward_A_{};
   std::array<int, kMaxAmbs> sensor_index_{};
   int ambs_ = 0;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "io/config_controller_forms.hpp"
 #include "io/config_readers.hpp"
 
 namespace ambdrop::config_detail {
@@ -11,9 +12,13 @@ ControllerParams ReadController(const TableReader& root, double step_s) {
   ControllerParams c;
   const auto table = root.OptionalTable("controller");
   if (!table) return c;
-  table->AllowOnly({"kind", "rate_Hz", "pid"});
-  const std::string kind = table->Choice("kind", {"none", "internal_pid"}, "none");
-  c.kind = kind == "internal_pid" ? ControllerKind::kInternalPid : ControllerKind::kNone;
+  table->AllowOnly({"kind", "rate_Hz", "pid", "linear", "delay_samples", "amplifier"});
+  // The kind picks the one controller form; the other form's table, if a base file brings one,
+  // is checked but not used.
+  const std::string kind =
+      table->Choice("kind", {"none", "internal_pid", "internal_linear"}, "none");
+  c.kind = kind == "none" ? ControllerKind::kNone : ControllerKind::kInternalPid;
+  c.form = kind == "internal_linear" ? ControllerForm::kLinear : ControllerForm::kPid;
   c.rate_Hz = table->Number("rate_Hz", Positive(), c.rate_Hz);
   // The loop runs whole steps per controller period (ControllerSubsteps, which says the same
   // without a file and line).
@@ -39,8 +44,17 @@ ControllerParams ReadController(const TableReader& root, double step_s) {
     p.kd_s = pid->Number("kd_s", NonNegative());
     p.derivative_filter_s = pid->Number("derivative_filter_s", NonNegative());
     p.gravity_feedforward = pid->Bool("gravity_feedforward", p.gravity_feedforward);
-  } else if (c.kind == ControllerKind::kInternalPid) {
+  } else if (kind == "internal_pid") {
     table->Table("pid");  // reports the missing table
+  }
+  if (const auto linear = table->OptionalTable("linear")) {
+    c.linear = ReadLinearController(*linear, c.rate_Hz);
+  } else if (kind == "internal_linear") {
+    table->Table("linear");  // reports the missing table
+  }
+  c.delay_samples = table->Integer("delay_samples", 0, kMaxDelaySamples, c.delay_samples);
+  if (const auto amplifier = table->OptionalTable("amplifier")) {
+    c.amplifier = ReadAmplifier(*amplifier);
   }
   return c;
 }

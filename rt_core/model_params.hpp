@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "rt_core/amb_params.hpp"
+#include "rt_core/controller_form_params.hpp"
 #include "rt_core/rotor_params.hpp"
 #include "rt_core/tdb_params.hpp"
 
@@ -66,13 +67,17 @@ struct PidParams {
 
 enum class ControllerKind {
   kNone,         ///< currents from the AMBs' current profiles
-  kInternalPid,  ///< the in-process reference controller
+  kInternalPid,  ///< the in-process controller (its form: ControllerParams::form)
 };
 
 struct ControllerParams {
   ControllerKind kind = ControllerKind::kNone;
   double rate_Hz = 20000.0;  ///< controller sample rate; an integer number of physics steps
   PidParams pid;
+  ControllerForm form = ControllerForm::kPid;
+  LinearControllerParams linear;
+  int delay_samples = 0;  ///< the command computed from sample n is applied at sample n + d
+  AmplifierParams amplifier;
 };
 
 struct GravityParams {
