@@ -149,6 +149,14 @@ RigidRotorParams ReadRigid(const TableReader& rotor) {
   return rigid;
 }
 
+ShaftElementTheory ReadElementTheory(const TableReader& rotor) {
+  const std::string theory =
+      rotor.Choice("element_theory", {"timoshenko", "rayleigh", "euler_bernoulli"}, "timoshenko");
+  if (theory == "rayleigh") return ShaftElementTheory::kRayleigh;
+  if (theory == "euler_bernoulli") return ShaftElementTheory::kEulerBernoulli;
+  return ShaftElementTheory::kTimoshenko;
+}
+
 }  // namespace
 
 AxialRange ShaftRange(const RotorParams& rotor) {
@@ -175,12 +183,16 @@ RotorParams ReadRotor(const TableReader& root) {
                                     "[rotor.rigid] alone)",
                                     key));
     }
+    rotor.Reject("element_theory",
+                 "no element_theory with model = \"rigid\" (it selects the flexible shaft's "
+                 "beam elements)");
     rotor.AllowOnly({"model", "modes", "modal_damping_ratio", "rigid"});
   } else {
     rotor.Reject("rigid",
                  "no [rotor.rigid] table with model = \"flexible\" (set model = \"rigid\" to use "
                  "it)");
-    rotor.AllowOnly({"model", "modes", "modal_damping_ratio", "materials", "sections", "discs"});
+    rotor.AllowOnly({"model", "modes", "modal_damping_ratio", "materials", "sections", "discs",
+                     "element_theory"});
   }
   params.modes = rotor.Integer("modes", 1, kMaxModes, params.modes);
   params.modal_damping_ratio =
@@ -189,6 +201,7 @@ RotorParams ReadRotor(const TableReader& root) {
     params.rigid = ReadRigid(rotor);
     return params;
   }
+  params.element_theory = ReadElementTheory(rotor);
   const MaterialMap materials = ReadMaterials(rotor);
   params.sections = ReadSections(rotor, materials);
   const AxialRange position = ShaftRange(params);

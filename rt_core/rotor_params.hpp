@@ -18,7 +18,7 @@ struct ShaftSection {
   double outer_diameter_m = 0.0;
   double inner_diameter_m = 0.0;
   Material material;
-  int elements = 1;  ///< Timoshenko elements in this section (more are added at stations)
+  int elements = 1;  ///< shaft elements in this section (more are added at stations)
   friend bool operator==(const ShaftSection&, const ShaftSection&) = default;
 };
 
@@ -43,6 +43,13 @@ struct RigidRotorParams {
 
 enum class RotorKind { kFlexible, kRigid };
 
+/// Beam theory of the FE shaft elements (Friswell et al. 2010, Sec. 5.4-5.5).
+enum class ShaftElementTheory {
+  kTimoshenko,     ///< shear deformation, rotary inertia and its gyroscopics
+  kRayleigh,       ///< rotary inertia and its gyroscopics, no shear deformation
+  kEulerBernoulli  ///< neither shear deformation nor rotary inertia (nor its gyroscopics)
+};
+
 struct RotorParams {
   RotorKind kind = RotorKind::kFlexible;
   std::vector<ShaftSection> sections;  ///< flexible rotor only
@@ -50,6 +57,7 @@ struct RotorParams {
   RigidRotorParams rigid;              ///< rigid rotor only
   int modes = 12;                      ///< pseudo-modal basis size (Jarroux 2019, Sec. 5)
   double modal_damping_ratio = 0.005;  ///< applied to the flexible modes only
+  ShaftElementTheory element_theory = ShaftElementTheory::kTimoshenko;  ///< flexible rotor only
   friend bool operator==(const RotorParams&, const RotorParams&) = default;
 };
 
