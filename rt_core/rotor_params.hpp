@@ -50,6 +50,19 @@ enum class ShaftElementTheory {
   kEulerBernoulli  ///< neither shear deformation nor rotary inertia (nor its gyroscopics)
 };
 
+/// Torques that slow the rotor once its drive stops (seals, bearings' drag, windage), opposing
+/// the spin: T = -(T0 sgn(W) + c1 W + c2 W |W|), sgn regularised (see rt_core/coast_down.hpp).
+struct CoastDownParams {
+  bool enabled = false;
+  double constant_torque_N_m = 0.0;  ///< T0
+  double viscous_N_m_s = 0.0;        ///< c1
+  double windage_N_m_s2 = 0.0;       ///< c2
+  /// k of the constant torque's smooth sign, k W / sqrt(1 + (k W)^2), so that it does not
+  /// chatter about W = 0 (at 100 s/rad it is within 0.5 % of +-1 above 0.1 rad/s).
+  double sign_regularisation_s_per_rad = 100.0;
+  friend bool operator==(const CoastDownParams&, const CoastDownParams&) = default;
+};
+
 struct RotorParams {
   RotorKind kind = RotorKind::kFlexible;
   std::vector<ShaftSection> sections;  ///< flexible rotor only
@@ -58,6 +71,7 @@ struct RotorParams {
   int modes = 12;                      ///< pseudo-modal basis size (Jarroux 2019, Sec. 5)
   double modal_damping_ratio = 0.005;  ///< applied to the flexible modes only
   ShaftElementTheory element_theory = ShaftElementTheory::kTimoshenko;  ///< flexible rotor only
+  CoastDownParams coast_down;  ///< acts once the drive stops; not an input of the reduction
   friend bool operator==(const RotorParams&, const RotorParams&) = default;
 };
 
