@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "io/config_readers.hpp"
@@ -149,6 +150,31 @@ RigidRotorParams ReadRigid(const TableReader& rotor) {
   return rigid;
 }
 
+ShaftElementTheory ReadElementTheory(const TableReader& rotor) {
+  const std::string theory =
+      rotor.Choice("element_theory", {"timoshenko", "rayleigh", "euler_bernoulli"}, "timoshenko");
+  if (theory == "rayleigh") return ShaftElementTheory::kRayleigh;
+  if (theory == "euler_bernoulli") return ShaftElementTheory::kEulerBernoulli;
+  return ShaftElementTheory::kTimoshenko;
+}
+
+// A disabled table need not give its numbers; any it gives are still checked.
+CoastDownParams ReadCoastDown(const TableReader& rotor) {
+  CoastDownParams c;
+  const std::optional<TableReader> table = rotor.OptionalTable("coast_down");
+  if (!table) return c;
+  table->AllowOnly({"enabled", "constant_torque_N_m", "viscous_N_m_s", "windage_N_m_s2",
+                    "sign_regularisation_s_per_rad"});
+  c.enabled = table->Bool("enabled", c.enabled);
+  c.constant_torque_N_m =
+      table->Number("constant_torque_N_m", NonNegative(), c.constant_torque_N_m);
+  c.viscous_N_m_s = table->Number("viscous_N_m_s", NonNegative(), c.viscous_N_m_s);
+  c.windage_N_m_s2 = table->Number("windage_N_m_s2", NonNegative(), c.windage_N_m_s2);
+  c.sign_regularisation_s_per_rad =
+      table->Number("sign_regularisation_s_per_rad", Positive(), c.sign_regularisation_s_per_rad);
+  return c;
+}
+
 }  // namespace
 
 AxialRange ShaftRange(const RotorParams& rotor) {
@@ -175,20 +201,26 @@ RotorParams ReadRotor(const TableReader& root) {
                                     "[rotor.rigid] alone)",
                                     key));
     }
-    rotor.AllowOnly({"model", "modes", "modal_damping_ratio", "rigid"});
+    rotor.Reject("element_theory",
+                 "no element_theory with model = \"rigid\" (it selects the flexible shaft's "
+                 "beam elements)");
+    rotor.AllowOnly({"model", "modes", "modal_damping_ratio", "rigid", "coast_down"});
   } else {
     rotor.Reject("rigid",
                  "no [rotor.rigid] table with model = \"flexible\" (set model = \"rigid\" to use "
                  "it)");
-    rotor.AllowOnly({"model", "modes", "modal_damping_ratio", "materials", "sections", "discs"});
+    rotor.AllowOnly({"model", "modes", "modal_damping_ratio", "materials", "sections", "discs",
+                     "element_theory", "coast_down"});
   }
   params.modes = rotor.Integer("modes", 1, kMaxModes, params.modes);
   params.modal_damping_ratio =
       rotor.Number("modal_damping_ratio", InHalfOpenRange(0.0, 1.0), params.modal_damping_ratio);
+  params.coast_down = ReadCoastDown(rotor);
   if (rigid) {
     params.rigid = ReadRigid(rotor);
     return params;
   }
+  params.element_theory = ReadElementTheory(rotor);
   const MaterialMap materials = ReadMaterials(rotor);
   params.sections = ReadSections(rotor, materials);
   const AxialRange position = ShaftRange(params);

@@ -148,7 +148,7 @@ TdbSpinParams ReadSpin(const TableReader& tdb) {
   const auto table = tdb.OptionalTable("spin");
   if (!table) return params;
   table->AllowOnly({"enabled", "inertia_kg_m2", "rotational_damping_N_m_s", "palmgren_f1",
-                    "pitch_diameter_m", "drag_torque_N_m"});
+                    "pitch_diameter_m", "drag_torque_N_m", "drag_regularisation_s_per_rad"});
   params.enabled = table->Bool("enabled", params.enabled);
   params.inertia_kg_m2 = table->Number("inertia_kg_m2", Positive(), params.inertia_kg_m2);
   params.rotational_damping_N_m_s =
@@ -157,6 +157,9 @@ TdbSpinParams ReadSpin(const TableReader& tdb) {
   params.pitch_diameter_m =
       table->Number("pitch_diameter_m", NonNegative(), params.pitch_diameter_m);
   params.drag_torque_N_m = table->Number("drag_torque_N_m", NonNegative(), params.drag_torque_N_m);
+  // Absent: the drag shares the friction's regularisation, as before the key existed.
+  params.drag_regularisation_s_per_rad = table->Number("drag_regularisation_s_per_rad", Positive(),
+                                                       params.drag_regularisation_s_per_rad);
   return params;
 }
 

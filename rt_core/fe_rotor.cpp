@@ -96,9 +96,9 @@ FeRotor AssembleFeRotor(const RotorParams& rotor, const std::vector<double>& sta
     const auto section_index = static_cast<std::size_t>(
         std::lower_bound(section_end.begin(), section_end.end(), mid) - section_end.begin());
     const ShaftSection& s = rotor.sections[std::min(section_index, rotor.sections.size() - 1)];
-    const PlaneElementMatrices el = TimoshenkoPlaneElement(
-        L, s.outer_diameter_m, s.inner_diameter_m, s.material.youngs_modulus_Pa,
-        s.material.shear_modulus_Pa, s.material.density_kg_m3);
+    const PlaneElementMatrices el = ShaftPlaneElement(
+        rotor.element_theory, L, s.outer_diameter_m, s.inner_diameter_m,
+        s.material.youngs_modulus_Pa, s.material.shear_modulus_Pa, s.material.density_kg_m3);
     const Eigen::Matrix4d m = el.translational_mass + el.rotary_mass;
     AddPlaneBlocks(m, t * m * t, e, &fe.mass);
     AddPlaneBlocks(el.stiffness, t * el.stiffness * t, e, &fe.stiffness);

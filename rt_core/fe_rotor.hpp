@@ -6,7 +6,7 @@
 
 namespace ambdrop {
 
-/// Finite-element rotor, 4 DOF per node ordered (x, y, theta_x, theta_y): Timoshenko shaft
+/// Finite-element rotor, 4 DOF per node ordered (x, y, theta_x, theta_y): shaft beam
 /// elements plus rigid discs. Lateral displacement at offset dz from a node is
 /// (x + dz theta_y, y - dz theta_x). Equation of motion (Jarroux 2019 Eq. (13)):
 ///   M q'' + (Omega G + C) q' + (dOmega/dt G + K) q = F.

@@ -128,8 +128,11 @@ ReducedRotor RigidReducedRotor(const RigidRotorParams& rigid,
 }
 
 ReductionInputs ReductionInputsOf(const ModelParams& p) {
-  if (p.rotor.kind == RotorKind::kRigid) return {p.rotor, p.bearings, {}};
-  return {p.rotor, p.bearings, StationPositions(p)};
+  // The coast-down losses act on the spin alone: a fit that varies them reuses the reduction.
+  RotorParams rotor = p.rotor;
+  rotor.coast_down = {};
+  if (p.rotor.kind == RotorKind::kRigid) return {rotor, p.bearings, {}};
+  return {rotor, p.bearings, StationPositions(p)};
 }
 
 ReducedRotor BuildReducedRotor(const ModelParams& p) {

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "rt_core/amb_force.hpp"
+#include "rt_core/coast_down.hpp"
 #include "rt_core/control_input.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/touchdown_bearing.hpp"
@@ -96,7 +97,10 @@ template <int H>
     torque += out.torque_on_rotor_N_m;
   }
 
-  // Spin: the motor holds the speed while powered; afterwards only friction acts (Ip W' = T).
+  // Spin: the motor holds the speed while powered; afterwards friction and, if enabled, the
+  // coast-down losses act (Ip W' = T). The branch leaves the default's sum untouched.
+  const CoastDownParams& coast = m.params.rotor.coast_down;
+  if (coast.enabled && !input.motor_on) torque += CoastDownTorque(coast, spin);
   const double spin_rate = input.motor_on ? 0.0 : torque / m.rotor.polar_inertia_kg_m2;
 
   // Unbalance, constant- and variable-speed terms (Jarroux 2019 Eq. (13), F_mu).

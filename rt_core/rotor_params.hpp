@@ -18,7 +18,7 @@ struct ShaftSection {
   double outer_diameter_m = 0.0;
   double inner_diameter_m = 0.0;
   Material material;
-  int elements = 1;  ///< Timoshenko elements in this section (more are added at stations)
+  int elements = 1;  ///< shaft elements in this section (more are added at stations)
   friend bool operator==(const ShaftSection&, const ShaftSection&) = default;
 };
 
@@ -43,6 +43,26 @@ struct RigidRotorParams {
 
 enum class RotorKind { kFlexible, kRigid };
 
+/// Beam theory of the FE shaft elements (Friswell et al. 2010, Sec. 5.4-5.5).
+enum class ShaftElementTheory {
+  kTimoshenko,     ///< shear deformation, rotary inertia and its gyroscopics
+  kRayleigh,       ///< rotary inertia and its gyroscopics, no shear deformation
+  kEulerBernoulli  ///< neither shear deformation nor rotary inertia (nor its gyroscopics)
+};
+
+/// Torques that slow the rotor once its drive stops (seals, bearings' drag, windage), opposing
+/// the spin: T = -(T0 sgn(W) + c1 W + c2 W |W|), sgn regularised (see rt_core/coast_down.hpp).
+struct CoastDownParams {
+  bool enabled = false;
+  double constant_torque_N_m = 0.0;  ///< T0
+  double viscous_N_m_s = 0.0;        ///< c1
+  double windage_N_m_s2 = 0.0;       ///< c2
+  /// k of the constant torque's smooth sign, k W / sqrt(1 + (k W)^2), so that it does not
+  /// chatter about W = 0 (at 100 s/rad it is within 0.5 % of +-1 above 0.1 rad/s).
+  double sign_regularisation_s_per_rad = 100.0;
+  friend bool operator==(const CoastDownParams&, const CoastDownParams&) = default;
+};
+
 struct RotorParams {
   RotorKind kind = RotorKind::kFlexible;
   std::vector<ShaftSection> sections;  ///< flexible rotor only
@@ -50,6 +70,8 @@ struct RotorParams {
   RigidRotorParams rigid;              ///< rigid rotor only
   int modes = 12;                      ///< pseudo-modal basis size (Jarroux 2019, Sec. 5)
   double modal_damping_ratio = 0.005;  ///< applied to the flexible modes only
+  ShaftElementTheory element_theory = ShaftElementTheory::kTimoshenko;  ///< flexible rotor only
+  CoastDownParams coast_down;  ///< acts once the drive stops; not an input of the reduction
   friend bool operator==(const RotorParams&, const RotorParams&) = default;
 };
 

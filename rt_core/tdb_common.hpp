@@ -89,16 +89,30 @@ inline double FrictionForce(const FrictionParams& f, double normal_force_N,
 /// Inner-race acceleration, Jarroux 2019 Eq. (9), with the Palmgren load torque M1 = f1 fn dm
 /// and a constant drag torque, both opposing the race's rotation. Their sign is regularised
 /// algebraically, x / sqrt(1 + x^2) with x = vref * race surface speed: the same smooth sign as
-/// Eq. (11)'s atan at a fraction of the cost.
+/// Eq. (11)'s atan at a fraction of the cost. With drag_regularisation_s_per_rad set, the drag
+/// torque takes x = k * race speed instead (a drag measured on a coasting race need not share
+/// the contact's slip scale); M1 keeps the friction's.
 inline double RaceAcceleration(const TdbParams& p, double race_speed_rad_s, double friction_N,
                                double normal_force_N) noexcept {
   if (!p.spin.enabled) return 0.0;
   const double inner_race_radius_m = p.journal_radius_m + p.clearance_m;
-  double resisting =
-      p.spin.palmgren_f1 * normal_force_N * p.spin.pitch_diameter_m + p.spin.drag_torque_N_m;
-  if (resisting != 0.0) {
-    const double x = p.friction.regularisation_s_per_m * race_speed_rad_s * inner_race_radius_m;
-    resisting *= x / std::sqrt(1.0 + x * x);
+  double resisting = 0.0;
+  if (p.spin.drag_regularisation_s_per_rad > 0.0) {
+    resisting = p.spin.palmgren_f1 * normal_force_N * p.spin.pitch_diameter_m;
+    if (resisting != 0.0) {
+      const double x = p.friction.regularisation_s_per_m * race_speed_rad_s * inner_race_radius_m;
+      resisting *= x / std::sqrt(1.0 + x * x);
+    }
+    const double xd = p.spin.drag_regularisation_s_per_rad * race_speed_rad_s;
+    resisting += p.spin.drag_torque_N_m * (xd / std::sqrt(1.0 + xd * xd));
+  } else {
+    // Shared sign (the default): this branch keeps the bits of every run before the key.
+    resisting =
+        p.spin.palmgren_f1 * normal_force_N * p.spin.pitch_diameter_m + p.spin.drag_torque_N_m;
+    if (resisting != 0.0) {
+      const double x = p.friction.regularisation_s_per_m * race_speed_rad_s * inner_race_radius_m;
+      resisting *= x / std::sqrt(1.0 + x * x);
+    }
   }
   return (friction_N * inner_race_radius_m - resisting -
           p.spin.rotational_damping_N_m_s * race_speed_rad_s) /

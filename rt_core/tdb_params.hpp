@@ -39,6 +39,9 @@ struct TdbSpinParams {
   double palmgren_f1 = 0.0;               ///< M1 = f1 * fn * dm (Palmgren / Harris)
   double pitch_diameter_m = 0.0;          ///< dm
   double drag_torque_N_m = 0.0;           ///< constant drag torque (seals, windage)
+  /// k of the drag torque's own smooth sign, k W / sqrt(1 + (k W)^2) on the race speed W;
+  /// 0: the friction's, vref Rir (see RaceAcceleration).
+  double drag_regularisation_s_per_rad = 0.0;
 };
 
 /// Offset of the TDB centre from the magnetic centre (Jarroux 2019, Sec. 4).

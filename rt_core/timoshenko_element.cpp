@@ -12,13 +12,24 @@ double HollowCircleShearCoefficient(double nu, double m) {
 
 PlaneElementMatrices TimoshenkoPlaneElement(double L, double D, double d, double E, double G,
                                             double rho) {
+  return ShaftPlaneElement(ShaftElementTheory::kTimoshenko, L, D, d, E, G, rho);
+}
+
+PlaneElementMatrices ShaftPlaneElement(ShaftElementTheory theory, double L, double D, double d,
+                                       double E, double G, double rho) {
   const double pi = std::numbers::pi;
   const double area = pi / 4.0 * (D * D - d * d);
   const double inertia = pi / 64.0 * (D * D * D * D - d * d * d * d);
   const double polar = 2.0 * inertia;
-  const double nu = E / (2.0 * G) - 1.0;
-  const double kappa = HollowCircleShearCoefficient(nu, d / D);
-  const double phi = 12.0 * E * inertia / (kappa * G * area * L * L);
+  // Without shear deformation Phi = 0 exactly, and the matrices below become the Euler-Bernoulli
+  // stiffness and consistent mass and the Rayleigh rotary inertia (Friswell Sec. 5.4). Raising G
+  // cannot get there: Cowper's kappa with nu = E/2G - 1 keeps kappa G finite as G grows.
+  double phi = 0.0;
+  if (theory == ShaftElementTheory::kTimoshenko) {
+    const double nu = E / (2.0 * G) - 1.0;
+    const double kappa = HollowCircleShearCoefficient(nu, d / D);
+    phi = 12.0 * E * inertia / (kappa * G * area * L * L);
+  }
   const double p1 = 1.0 + phi;
 
   PlaneElementMatrices out;
@@ -60,6 +71,12 @@ PlaneElementMatrices TimoshenkoPlaneElement(double L, double D, double d, double
     r /= 30.0 * p1 * p1 * L;
     out.rotary_mass = rho * inertia * r;
     out.polar_rotary = rho * polar * r;
+  }
+  // Euler-Bernoulli: the section's rotary inertia is neglected, and with it the gyroscopic
+  // moment of the shaft (Friswell Sec. 5.4; discs keep theirs).
+  if (theory == ShaftElementTheory::kEulerBernoulli) {
+    out.rotary_mass.setZero();
+    out.polar_rotary.setZero();
   }
   return out;
 }

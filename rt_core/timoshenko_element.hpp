@@ -1,6 +1,8 @@
 #pragma once
 #include <Eigen/Core>
 
+#include "rt_core/rotor_params.hpp"
+
 namespace ambdrop {
 
 /// Matrices of one Timoshenko beam element in one bending plane, DOF (w1, s1, w2, s2) with
@@ -21,5 +23,13 @@ double HollowCircleShearCoefficient(double poisson_ratio, double inner_over_oute
 PlaneElementMatrices TimoshenkoPlaneElement(double length_m, double outer_diameter_m,
                                             double inner_diameter_m, double youngs_modulus_Pa,
                                             double shear_modulus_Pa, double density_kg_m3);
+
+/// The element of the chosen beam theory (Friswell Sec. 5.4-5.5): Timoshenko as above; Rayleigh
+/// the same with Phi = 0 (no shear deformation); Euler-Bernoulli also without the rotary and
+/// polar rotary matrices. The shear modulus is read by the Timoshenko element only.
+PlaneElementMatrices ShaftPlaneElement(ShaftElementTheory theory, double length_m,
+                                       double outer_diameter_m, double inner_diameter_m,
+                                       double youngs_modulus_Pa, double shear_modulus_Pa,
+                                       double density_kg_m3);
 
 }  // namespace ambdrop

@@ -607,7 +607,7 @@ std::vector<RuleCase> RotorCases() {
        "modal_damping_ratio", "rotor.modal_damping_ratio", "expected a number in [0, 1)", "1"},
       {"RotorUnknownKey", Full("modes = 10", "mode = 10"), "mode = 10", "rotor.mode",
        "unknown key 'rotor.mode' (allowed here: model, modes, modal_damping_ratio, materials, "
-       "sections, discs)"},
+       "sections, discs, element_theory, coast_down)"},
       {"MaterialKeyMissing", Full("density_kg_m3 = 4500\n", ""), "[rotor.materials.titanium]",
        "rotor.materials.titanium.density_kg_m3",
        "missing key 'rotor.materials.titanium.density_kg_m3': expected a positive number "
