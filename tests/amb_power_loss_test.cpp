@@ -214,6 +214,46 @@ TEST(PowerLossLaws, ElectromagnetBiasRampsEachCoil) {
   }
 }
 
+TEST(PowerLossLaws, ElectromagnetLawRampsEachCoil) {
+  // The electromagnet law with its bias from the coils: the pull of each coil from its own
+  // ramped current, k (I+^2/(g0 - u)^2 - I-^2/(g0 + u)^2) (seed 003, Eq. (2)).
+  ModelParams p = TwoAmbRig(AmbBiasSource::kElectromagnet);
+  p.gravity.enabled = false;
+  const double slew = 100.0;
+  const double bias = 2.0;
+  const double i0 = 0.5;
+  for (AmbParams& a : p.ambs) {
+    a.law = AmbForceLaw::kElectromagnet;
+    a.electromagnet = {1.96e-4, 130.0, 0.25e-3, bias};
+    a.flux_decay.enabled = true;
+    a.flux_decay.current_law = PowerLossCurrentLaw::kSlewLimitedRamp;
+    a.flux_decay.slew_rate_A_per_s = slew;
+  }
+  const Model model = BuildModel(p);
+  Simulator sim(model);
+  const PowerState power = FailedAtZero(model, i0);
+  const double u = 30e-6;
+  const double g0 = 0.25e-3;
+  const double k =
+      4e-7 * std::numbers::pi * 130.0 * 130.0 * 1.96e-4 * std::cos(std::numbers::pi / 8) / 4;
+  const State s = Displaced(model, sim, u);
+  const int n = model.modes();
+  for (const double t : {0.0, 5e-3, 14.5e-3, 20e-3, 30e-3}) {
+    const double plus = std::max(bias + i0 - slew * t, 0.0);
+    const double minus = std::max(bias - i0 - slew * t, 0.0);
+    ControlInput in;
+    power.Fill(std::llround(t / kStep_s), &in);
+    StateVector rate = StateVector::Zero(model.state_size);
+    std::array<TdbForce, kMaxTdbs> tdb{};
+    sim.Derivative(s.y, in, &rate, &tdb);
+    const double f =
+        k * (plus * plus / ((g0 - u) * (g0 - u)) - minus * minus / ((g0 + u) * (g0 + u)));
+    EXPECT_NEAR((model.amb_shapes[0] * rate.segment(n, n))(0), 2.0 * f / kMass_kg,
+                1e-6 * std::abs(2.0 * f / kMass_kg) + 1e-9)
+        << t;
+  }
+}
+
 TEST(PowerLossLaws, HoldThenExponential) {
   // i0 for the hold time, then i0 exp(-(t - hold)/tau); the whole force by the square.
   for (const AmbBiasSource bias :
