@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "rt_core/amb_force.hpp"
+#include "rt_core/power_loss_drive.hpp"
 
 namespace ambdrop {
 
@@ -31,11 +31,14 @@ void PowerState::Fill(std::int64_t step, ControlInput* in) const noexcept {
     for (int axis = 0; axis < 2; ++axis) {
       if (lost_at_[a][axis] < 0) {
         in->amb[a].force_scale[axis] = 1.0;
+        in->amb[a].bias_scale[axis] = 1.0;
         continue;
       }
-      in->amb[a].current_A[axis] = frozen_current_A_[a][axis];
-      in->amb[a].force_scale[axis] =
-          FluxDecayForceScale(model_->params.ambs[a], (step - lost_at_[a][axis]) * dt);
+      const UnpoweredDrive d = PowerLossDrive(model_->params.ambs[a], frozen_current_A_[a][axis],
+                                              (step - lost_at_[a][axis]) * dt);
+      in->amb[a].current_A[axis] = d.current_A;
+      in->amb[a].force_scale[axis] = d.force_scale;
+      in->amb[a].bias_scale[axis] = d.bias_scale;
     }
   }
 }

@@ -17,8 +17,9 @@ struct PowerEvent {
 };
 
 /// Which AMB axes have power and since when, and what that means for the step's input: an
-/// unpowered axis keeps the current it had when power failed, its force fading with its flux
-/// decay (or gone at once); without motor power the rotor coasts. Allocation-free.
+/// unpowered axis keeps the current it had when power failed, falling by its power-loss law
+/// (rt_core/power_loss_drive.hpp; gone at once without flux decay, and with a permanent-magnet
+/// bias the bias force stays); without motor power the rotor coasts. Allocation-free.
 class PowerState {
  public:
   explicit PowerState(const Model& model) : model_(&model) {}

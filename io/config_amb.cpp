@@ -18,6 +18,7 @@ const std::vector<std::string_view> kEquivalentKeys = {"stiffness_N_per_m", "dam
                                                        "gravity_compensation"};
 const std::vector<std::string_view> kLinearisedKeys = {"current_gain_N_per_A",
                                                        "position_gain_N_per_m", "current_profile"};
+constexpr std::string_view kPermanentMagnet = "permanent_magnet";
 
 /// Keys of the other force law get a message naming the law, not just "unknown key".
 void RejectKeysOfOtherLaw(const TableReader& table, std::string_view law,
@@ -89,11 +90,12 @@ void ReadCommon(const TableReader& table, const AxialRange& position, AmbParams*
   amb->position_m = ReadAxialPosition(table, position);
   amb->current_limit_A = table.Number("current_limit_A", Positive(), amb->current_limit_A);
   amb->sensor = table.String("sensor", amb->name);
-  if (const auto decay = table.OptionalTable("flux_decay")) {
-    decay->AllowOnly({"enabled", "time_constant_s"});
-    amb->flux_decay.enabled = decay->Bool("enabled", false);
-    amb->flux_decay.time_constant_s = decay->Number("time_constant_s", Positive());
+  if (amb->law != AmbForceLaw::kEquivalent &&
+      table.Choice("bias_source", {kElectromagnet, kPermanentMagnet}, kElectromagnet) ==
+          kPermanentMagnet) {
+    amb->bias_source = AmbBiasSource::kPermanentMagnet;
   }
+  amb->flux_decay = ReadFluxDecay(table, *amb);
 }
 
 ElectromagnetParams ReadElectromagnet(const TableReader& amb) {
@@ -125,6 +127,9 @@ AmbParams ReadAmb(const std::string& name, const TableReader& table, const Axial
     table.Reject("electromagnet",
                  "no electromagnet table with law = \"equivalent\" (it belongs to law = "
                  "\"electromagnet\")");
+    table.Reject("bias_source",
+                 "no bias_source with law = \"equivalent\" (its stiffness holds the bias; declare "
+                 "law = \"linearised_currents\" or \"electromagnet\")");
     table.AllowOnly(WithCommon({"stiffness_N_per_m", "damping_N_s_per_m", "gravity_compensation"}));
     amb.law = AmbForceLaw::kEquivalent;
     ReadCommon(table, position, &amb);
@@ -138,8 +143,8 @@ AmbParams ReadAmb(const std::string& name, const TableReader& table, const Axial
     table.Reject("electromagnet",
                  "no electromagnet table with law = \"linearised_currents\" (it belongs to law = "
                  "\"electromagnet\")");
-    table.AllowOnly(
-        WithCommon({"current_gain_N_per_A", "position_gain_N_per_m", "current_profile"}));
+    table.AllowOnly(WithCommon(
+        {"current_gain_N_per_A", "position_gain_N_per_m", "current_profile", "bias_source"}));
     amb.law = AmbForceLaw::kLinearisedCurrents;
     ReadCommon(table, position, &amb);
     amb.current_gain_N_per_A = table.Number("current_gain_N_per_A", AnyNumber());
@@ -151,7 +156,7 @@ AmbParams ReadAmb(const std::string& name, const TableReader& table, const Axial
                "no current_gain_N_per_A with law = \"electromagnet\" (the geometry sets it)");
   table.Reject("position_gain_N_per_m",
                "no position_gain_N_per_m with law = \"electromagnet\" (the geometry sets it)");
-  table.AllowOnly(WithCommon({"electromagnet", "current_profile"}));
+  table.AllowOnly(WithCommon({"electromagnet", "current_profile", "bias_source"}));
   amb.law = AmbForceLaw::kElectromagnet;
   ReadCommon(table, position, &amb);
   amb.electromagnet = ReadElectromagnet(table);

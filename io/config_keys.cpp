@@ -63,11 +63,10 @@ std::string KeyUnit(std::string_view key) {
   std::string unit = config_detail::UnitOfKey(key);
   if (!unit.empty()) return unit;
   // Units the error messages do not spell out but a fit range needs.
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 4> kMore = {{
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 3> kMore = {{
       {"_kg_m", "kg m"},
       {"_Hz", "Hz"},
       {"_T", "T"},
-      {"_N_m_s2", "N m s^2"},
   }};
   for (const auto& [suffix, u] : kMore) {
     if (key.ends_with(suffix)) return std::string(u);

@@ -30,6 +30,8 @@ double ReadAxialPosition(const TableReader& table, const AxialRange& range);
 
 std::vector<LinearBearingParams> ReadBearings(const TableReader& root, const AxialRange& position);
 std::vector<AmbParams> ReadAmbs(const TableReader& root, const AxialRange& position);
+/// `amb_table`'s optional flux_decay table; `amb` holds the AMB's law and bias source.
+FluxDecayParams ReadFluxDecay(const TableReader& amb_table, const AmbParams& amb);
 /// The period at which the sensors are sampled (it bounds a lag), and how a message names it.
 struct SensorSampling {
   double period_s = 0.0;

@@ -106,7 +106,7 @@ NumberRule NonNegativeBelow(double upper, std::string what) {
 
 std::string UnitOfKey(std::string_view key) {
   // Longest suffix first, so "_N_s_per_m" wins over "_s_per_m" and "_m".
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 22> kUnits = {{
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 23> kUnits = {{
       {"_N_per_m1_5", "N/m^1.5"},
       {"_s_per_rad", "s/rad"},
       {"_N_m_s2", "N m s^2"},
@@ -116,6 +116,7 @@ std::string UnitOfKey(std::string_view key) {
       {"_N_per_m", "N/m"},
       {"_per_m", "1/m"},
       {"_N_per_A", "N/A"},
+      {"_A_per_s", "A/s"},
       {"_kg_m3", "kg/m^3"},
       {"_kg_m2", "kg m^2"},
       {"_N_m_s", "N m s"},

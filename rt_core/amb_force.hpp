@@ -28,10 +28,13 @@ inline double ElectromagnetPositionGain(const ElectromagnetParams& e) noexcept {
 }
 
 /// The control current the amplifier can deliver: |i| <= limit, and for the electromagnet law
-/// both coil currents I0 +- i inside [0, limit].
+/// both coil currents I0 +- i inside [0, limit]. A permanent-magnet bias is no coil current, so
+/// there the amplifier carries i alone (|i| <= limit) and I0 - |i| >= 0 keeps the weaker
+/// pole's flux from reversing.
 inline double ControlCurrentLimit(const AmbParams& a) noexcept {
   if (a.law != AmbForceLaw::kElectromagnet) return a.current_limit_A;
   const double i0 = a.electromagnet.bias_current_A;
+  if (a.bias_source == AmbBiasSource::kPermanentMagnet) return std::min(i0, a.current_limit_A);
   return std::min(i0, a.current_limit_A - i0);
 }
 inline double LimitedCurrent(const AmbParams& a, double current_A) noexcept {

@@ -29,11 +29,30 @@ struct ElectromagnetParams {
   double saturation_flux_density_T = 0.0;
 };
 
-/// After power loss the coil currents decay as exp(-t/tau) (the coils' L/R and the
-/// amplifier's discharge), so the force, quadratic in the currents, decays as exp(-2t/tau).
+/// What makes the bias flux of a current-driven AMB: the amplifiers (the coils carry I0 +- i,
+/// so the bias fades with the power) or permanent magnets (the bias flux, its force and its
+/// negative stiffness stay after power loss; only the control current fades).
+enum class AmbBiasSource { kElectromagnet, kPermanentMagnet };
+
+/// How each coil current falls after power loss (docs/equations.md, "AMBs after power loss").
+enum class PowerLossCurrentLaw {
+  kExponential,          ///< i(t) = i0 exp(-t/tau): the coil's L/R
+  kSlewLimitedRamp,      ///< |i| falls at slew_rate_A_per_s and stops at zero
+  kHoldThenExponential,  ///< i0 until hold_time_s, then exp(-(t - hold)/tau)
+};
+
+/// After power loss the coil currents fall by `current_law` (default exp(-t/tau), the coils'
+/// L/R and the amplifier's discharge; with an electromagnet bias the force, quadratic in the
+/// currents, then decays as exp(-2t/tau)). Disabled: the currents vanish at once.
 struct FluxDecayParams {
   bool enabled = false;
-  double time_constant_s = 0.0;  ///< tau
+  double time_constant_s = 0.0;  ///< tau, of the currents (not of the force)
+  PowerLossCurrentLaw current_law = PowerLossCurrentLaw::kExponential;
+  double slew_rate_A_per_s = 0.0;  ///< slew-limited ramp
+  double hold_time_s = 0.0;        ///< hold then exponential
+  /// Slew-limited ramp of a linearised-law AMB with an electromagnet bias: the coils' bias
+  /// current I0 (the law itself does not declare it; the electromagnet law's geometry does).
+  double bias_current_A = 0.0;
 };
 
 /// Control currents of one radial AMB at one instant (linear interpolation in between).
@@ -59,6 +78,7 @@ struct AmbParams {
   /// Amplifier limit on the control current |i| (A); the electromagnet law further keeps both
   /// coil currents I0 +- i within [0, limit]. Infinite: no limit.
   double current_limit_A = std::numeric_limits<double>::infinity();
+  AmbBiasSource bias_source = AmbBiasSource::kElectromagnet;  ///< current-driven laws
   FluxDecayParams flux_decay;
   std::string sensor;  ///< sensor plane that feeds this AMB's controller (default: same name)
 };

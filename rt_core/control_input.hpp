@@ -10,6 +10,9 @@ struct AmbDrive {
   std::array<double, 2> current_A{};  ///< control current (x, y), current-driven laws
   /// Scale on the axis force: 1 powered, 0 without power, in between while the flux decays.
   std::array<double, 2> force_scale{1.0, 1.0};
+  /// Scale on the bias current I0 of the current-driven laws (ki by it, ks by its square): 1
+  /// unless a slew-limited ramp drains an electromagnet bias after power loss.
+  std::array<double, 2> bias_scale{1.0, 1.0};
 };
 
 /// What the controller side hands the physics for one step (zero-order hold over the step).

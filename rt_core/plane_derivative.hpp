@@ -59,23 +59,29 @@ template <int H>
         break;
       }
       case AmbForceLaw::kLinearisedCurrents: {
+        // ki = 4 k I0 / g0^2 and ks = 4 k I0^2 / g0^3 (seed 003, the electromagnet law
+        // linearised at the centre): a fading bias scales ki by b and ks by b^2. b = 1 is exact.
         const double ki = amb.params.current_gain_N_per_A;
         const double ks = amb.params.position_gain_N_per_m;
-        f[0] = ki * std::clamp(drive.current_A[0], -amb.current_limit_A, amb.current_limit_A) +
-               ks * ux;
-        f[1] = ki * std::clamp(drive.current_A[1], -amb.current_limit_A, amb.current_limit_A) +
-               ks * uy;
+        const double bx = drive.bias_scale[0];
+        const double by = drive.bias_scale[1];
+        f[0] =
+            (ki * bx) * std::clamp(drive.current_A[0], -amb.current_limit_A, amb.current_limit_A) +
+            (ks * (bx * bx)) * ux;
+        f[1] =
+            (ki * by) * std::clamp(drive.current_A[1], -amb.current_limit_A, amb.current_limit_A) +
+            (ks * (by * by)) * uy;
         break;
       }
       case AmbForceLaw::kElectromagnet: {
         const ElectromagnetParams& e = amb.params.electromagnet;
         const double lim = amb.current_limit_A;
-        f[0] =
-            ElectromagnetForce(amb.electromagnet_constant, e.nominal_gap_m, e.bias_current_A,
-                               std::clamp(drive.current_A[0], -lim, lim), ux, amb.max_coil_force_N);
-        f[1] =
-            ElectromagnetForce(amb.electromagnet_constant, e.nominal_gap_m, e.bias_current_A,
-                               std::clamp(drive.current_A[1], -lim, lim), uy, amb.max_coil_force_N);
+        f[0] = ElectromagnetForce(
+            amb.electromagnet_constant, e.nominal_gap_m, e.bias_current_A * drive.bias_scale[0],
+            std::clamp(drive.current_A[0], -lim, lim), ux, amb.max_coil_force_N);
+        f[1] = ElectromagnetForce(
+            amb.electromagnet_constant, e.nominal_gap_m, e.bias_current_A * drive.bias_scale[1],
+            std::clamp(drive.current_A[1], -lim, lim), uy, amb.max_coil_force_N);
         break;
       }
     }

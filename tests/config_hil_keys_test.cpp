@@ -96,7 +96,8 @@ enabled = true
 tau = 1e-3
 )"),
               HasSubstr("test.toml:18: unknown key 'amb.a.flux_decay.tau' (allowed here: enabled, "
-                        "time_constant_s)"));
+                        "current_law, time_constant_s, slew_rate_A_per_s, hold_time_s, "
+                        "bias_current_A)"));
 }
 
 TEST(ConfigHil, SensorErrorModels) {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "rt_core/amb_force.hpp"
+#include "rt_core/power_loss_drive.hpp"
 
 namespace ambdrop {
 
@@ -65,7 +65,7 @@ void CurrentSampler::FillBefore(std::int64_t step) noexcept {
       for (int axis = 0; axis < 2; ++axis) {
         if (lost_at_[a][axis] < 0) continue;
         const double t = static_cast<double>(steps_[filled_] - lost_at_[a][axis]) * step_s_;
-        c[a][axis] = frozen_[a][axis] * std::sqrt(FluxDecayForceScale(params_.ambs[a], t));
+        c[a][axis] = ReportedCoilCurrent(PowerLossDrive(params_.ambs[a], frozen_[a][axis], t));
       }
     }
     ++filled_;

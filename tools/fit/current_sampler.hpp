@@ -13,8 +13,8 @@
 namespace ambdrop {
 
 /// Each sample's coil control currents: what the controller commanded while the axis has
-/// power; after it loses power the current it had then, fading with the flux
-/// (rt_core/amb_force.hpp: force ~ exp(-2t/tau), so current ~ exp(-t/tau); gone at once
+/// power; after it loses power the current it had then, falling by the AMB's power-loss law
+/// (rt_core/power_loss_drive.hpp, ReportedCoilCurrent: by default exp(-t/tau); gone at once
 /// without flux decay), as a coil-current sensor would read it. A step's input reaches the
 /// recorder after that step's observation, so a sample is filled only once the input after it
 /// is known: it takes the last input applied from its step or earlier. Power events come

@@ -20,8 +20,8 @@ struct RecordAsMeasurement {
 /// - x_<sensor>, y_<sensor>: the readings sent, as sent;
 /// - i_<amb>_x, i_<amb>_y: the coil control current in force at the row: the last input applied
 ///   from the row's step or earlier (a watchdog's zeroing input zeroes it); after an axis loses
-///   power, the current it held then times sqrt(FluxDecayForceScale) (tools/fit/
-///   current_sampler.hpp, as `ambdrop measure` reads it);
+///   power, the current it held then falling by the AMB's power-loss law (ReportedCoilCurrent,
+///   tools/fit/current_sampler.hpp, as `ambdrop measure` reads it);
 /// - f_<tdb>, w_<tdb>, w_rotor: TDB normal force, inner-race speed and rotor spin speed from the
 ///   last state event at or before the row (the first one for rows before it); left out when
 ///   the record holds no state events.
