@@ -15,10 +15,17 @@ namespace ambdrop::detail {
 
 // Flattened: GCC otherwise leaves the 6x6 gyroscopic products as out-of-line calls (6 % of the
 // Dahl step). Inlining changes no rounding (contraction is off), so the bits stay the same.
+// Not in the sanitizer builds: there, flattening every instrumented call into each plane size's
+// kernel took GCC over 20 minutes and 1.8 GB for simulator.cpp alone.
+#ifdef AMBDROP_NO_FLATTEN
+#define AMBDROP_FLATTEN
+#else
+#define AMBDROP_FLATTEN [[gnu::flatten]]
+#endif
 template <int H>
-[[gnu::flatten]] void PlaneDerivative(const Model& m, const StateVector& y,
-                                      const ControlInput& input, StateVector* rate,
-                                      std::array<TdbForce, kMaxTdbs>* tdb_out) noexcept {
+AMBDROP_FLATTEN void PlaneDerivative(const Model& m, const StateVector& y,
+                                     const ControlInput& input, StateVector* rate,
+                                     std::array<TdbForce, kMaxTdbs>* tdb_out) noexcept {
   using Vec = Eigen::Matrix<double, H, 1>;
   using Mat = Eigen::Matrix<double, H, H>;
   const auto mat = [](const PlaneMatrix& a) { return Eigen::Map<const Mat>(a.data()); };

@@ -5,16 +5,7 @@
 # run as `ambdrop sim` of the rig, byte for byte, and records and replays like any run; a record
 # whose AMBs take no currents, or a window outside the record, is refused with a clear error.
 # Usage: current_profile_export.sh AMBDROP_BINARY SOURCE_DIR
-set -euo pipefail
-tool=$1
-source_dir=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-fail() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
-cd "$work"
+source "$(dirname "$0")/../support/cli_prelude.sh" "$@"
 
 # The recorded drop: power fails at 0.2 s.
 "$tool" sim "$source_dir/configs/jarroux2019_industrial_pid.toml" --out live --record live.lcm -q

@@ -4,16 +4,7 @@
 # wrote): fit.json names the misalignment with its values and uncertainties, the residual
 # falls, report.md and its plots are written; bad inputs are refused with a clear error.
 # Usage: fit.sh AMBDROP_BINARY SOURCE_DIR
-set -euo pipefail
-tool=$1
-source_dir=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-fail() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
-cd "$work"
+source "$(dirname "$0")/../support/cli_prelude.sh" "$@"
 rig="$source_dir/configs/jarroux2019_industrial_pid.toml"
 timing=(--set simulation.duration_s=0.25 --set trigger.time_s=0.1)
 

@@ -3,16 +3,7 @@
 # rig with its DE TDB offset, fitted with the rig as declared and no [measurement] table (the
 # record brings its own): fit.json names the DE misalignment with the recorded offset.
 # Usage: fit_lcm.sh AMBDROP_BINARY SOURCE_DIR
-set -euo pipefail
-tool=$1
-source_dir=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-fail() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
-cd "$work"
+source "$(dirname "$0")/../support/cli_prelude.sh" "$@"
 rig="$source_dir/configs/jarroux2019_industrial_pid.toml"
 
 "$tool" sim "$rig" --set simulation.duration_s=0.25 --set trigger.time_s=0.1 \

@@ -3,16 +3,7 @@
 # skipped, counted in summary.json and warned with its line number; the replay stays within the
 # run and says the log was damaged.
 # Usage: hostile_candump.sh AMBDROP_BINARY SOURCE_DIR
-set -euo pipefail
-tool=$1
-source_dir=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-fail() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
-cd "$work"
+source "$(dirname "$0")/../support/cli_prelude.sh" "$@"
 
 # 0x200: the emulator's sensors (time zero), 0x100: the controller's currents (1 A each).
 cat >bus.log <<'LOG'

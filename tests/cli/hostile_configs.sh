@@ -3,16 +3,7 @@
 # --set) and line, the key, the range expected and the value found; a long run is announced on
 # stderr before it starts.
 # Usage: hostile_configs.sh AMBDROP_BINARY SOURCE_DIR
-set -euo pipefail
-tool=$1
-source_dir=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-fail() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
-cd "$work"
+source "$(dirname "$0")/../support/cli_prelude.sh" "$@"
 pid=$source_dir/configs/jarroux2019_industrial_pid.toml
 
 # Runs `ambdrop sim` on $1 with the other arguments as --set overrides; expects exit $expected_rc

@@ -4,16 +4,7 @@
 # (it would swamp its channel's noise and drop the channel without a word). Each is refused
 # (exit 2) saying why, naming the channels left out or the cell.
 # Usage: hostile_fit.sh AMBDROP_BINARY SOURCE_DIR
-set -euo pipefail
-tool=$1
-source_dir=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-fail() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
-cd "$work"
+source "$(dirname "$0")/../support/cli_prelude.sh" "$@"
 rig="$source_dir/configs/jarroux2019_industrial_pid.toml"
 timing=(--set simulation.duration_s=0.25 --set trigger.time_s=0.1)
 

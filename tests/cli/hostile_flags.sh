@@ -2,16 +2,7 @@
 # Number flags that are not finite, or absurd: a usage error (exit 64) naming the flag, before
 # anything runs or is written.
 # Usage: hostile_flags.sh AMBDROP_BINARY SOURCE_DIR
-set -euo pipefail
-tool=$1
-source_dir=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-fail() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
-cd "$work"
+source "$(dirname "$0")/../support/cli_prelude.sh" "$@"
 pid=$source_dir/configs/jarroux2019_industrial_pid.toml
 
 # expect_usage FLAG VALUE COMMAND...: COMMAND with FLAG VALUE exits 64 naming FLAG, writes nothing.
