@@ -144,7 +144,7 @@ TEST(ConfigHil, ControllerTable) {
               HasSubstr("missing key 'controller.pid'"));
   EXPECT_THAT(ErrorOf(kRigid + "[controller]\nkind = \"external\"\n"),
               HasSubstr("test.toml:12: key 'controller.kind': expected one of \"none\", "
-                        "\"internal_pid\", found \"external\""));
+                        "\"internal_pid\", \"internal_linear\", found \"external\""));
   const ModelParams p = LoadConfigFromString(kRigid + R"(
 [controller]
 kind = "internal_pid"
