@@ -104,8 +104,13 @@ SensorParams ReadSensor(const std::string& name, const TableReader& table,
   const std::string output = table.Choice("output", {"metres", "counts"}, "metres");
   if (output == "counts") {
     s.output = SensorOutput::kCounts;
-    s.counts_per_m = table.Number("counts_per_m", Positive());
-    s.counts_offset = table.Number("counts_offset", AnyNumber(), 0.0);
+    // Bounded so that a reading within the excursion bound stays a 64-bit count (llround).
+    s.counts_per_m =
+        table.Number("counts_per_m", NumberRule{.lower = 0.0,
+                                                .lower_inclusive = false,
+                                                .upper = 1e12,
+                                                .what = "a positive number of at most 1e12"});
+    s.counts_offset = table.Number("counts_offset", InRange(-1e12, 1e12), 0.0);
   } else {
     table.Reject("counts_per_m", "no counts_per_m with output = \"metres\"");
     table.Reject("counts_offset", "no counts_offset with output = \"metres\"");

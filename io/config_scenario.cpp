@@ -10,6 +10,7 @@ namespace {
 
 using config_detail::NodeLocation;
 using config_detail::NonNegative;
+using config_detail::NumberRule;
 using config_detail::Positive;
 using config_detail::TableReader;
 
@@ -114,7 +115,13 @@ ScenarioParams ReadScenario(const TableReader& table, const ModelParams& params)
   table.AllowOnly({"description", "watchdog_timeout_s", "silence_action", "event", "expect"});
   ScenarioParams s;
   s.description = table.String("description", "");
-  s.watchdog_timeout_s = table.Number("watchdog_timeout_s", Positive(), 5e-3);
+  // Bounded as hil's --watchdog-s is: it becomes nanoseconds through llround.
+  s.watchdog_timeout_s = table.Number("watchdog_timeout_s",
+                                      NumberRule{.lower = 0.0,
+                                                 .lower_inclusive = false,
+                                                 .upper = 1e6,
+                                                 .what = "a positive number of at most 1e6"},
+                                      5e-3);
   s.silence_action = table.Choice("silence_action", {"hold", "zero", "stop"}, "hold");
   bool power_events = false;
   for (const TableReader& event : table.TableArray("event")) {

@@ -74,4 +74,13 @@ rc=0
 "$tool" hil "$pid" --set controller.rate_Hz=30000 --virtual-clock --out hil -q 2>hil.err || rc=$?
 [[ $rc -eq 2 ]] || fail "hil with a rate of 6.67 steps exited $rc, not 2: $(cat hil.err)"
 
+# Numbers that become counts or durations through llround: a sensor's counts per metre and
+# offset, a scenario's watchdog timeout (1e300 s overflowed to garbage nanoseconds).
+expected=("key 'sensor.de.counts_per_m': expected a positive number of at most 1e12" "found 1e+300")
+expect_error "$pid" sensor.de.output=counts sensor.de.counts_per_m=1e300
+expected=("key 'sensor.de.counts_offset': expected a number in \[-1000000000000, 1000000000000\]")
+expect_error "$pid" sensor.de.output=counts sensor.de.counts_per_m=1e6 sensor.de.counts_offset=1e300
+expected=("key 'scenario.watchdog_timeout_s': expected a positive number of at most 1e6 (s), found 1e+300")
+expect_error "$source_dir/configs/scenarios/power_loss.toml" scenario.watchdog_timeout_s=1e300
+
 echo "hostile configs: ok"
