@@ -13,6 +13,7 @@
 #include "io/config_readers.hpp"
 #include "io/config_realtime.hpp"
 #include "io/config_scenario.hpp"
+#include "io/config_tree.hpp"
 #include "io/toml_reader.hpp"
 
 namespace ambdrop {
@@ -70,11 +71,22 @@ LoadedConfig LoadConfig(const std::filesystem::path& path,
 
 LoadedConfig LoadConfigFromString(const std::string& text, const std::string& source_name,
                                   const std::vector<std::string>& overrides) {
+  return config_detail::ReadLoadedConfig(config_detail::ConfigTree(text, source_name, overrides),
+                                         text, source_name);
+}
+
+namespace config_detail {
+
+toml::table ConfigTree(const std::string& text, const std::string& source_name,
+                       const std::vector<std::string>& overrides) {
   const std::filesystem::path directory = std::filesystem::path(source_name).parent_path();
-  toml::table root = config_detail::ResolveBase(Parse(text, source_name), directory, source_name);
-  for (const std::string& override_text : overrides) {
-    config_detail::ApplyOverride(root, override_text);
-  }
+  toml::table root = ResolveBase(Parse(text, source_name), directory, source_name);
+  for (const std::string& override_text : overrides) ApplyOverride(root, override_text);
+  return root;
+}
+
+LoadedConfig ReadLoadedConfig(const toml::table& root, const std::string& text,
+                              const std::string& source_name) {
   LoadedConfig loaded;
   loaded.source_path = source_name;
   loaded.source_text = text;
@@ -89,7 +101,7 @@ LoadedConfig LoadConfigFromString(const std::string& text, const std::string& so
     loaded.scenario = ReadScenario(*scenario, loaded.params);
   }
   if (const std::optional<TableReader> measurement = root_reader.OptionalTable("measurement")) {
-    loaded.measurement = config_detail::ReadMeasurement(*measurement, loaded.params);
+    loaded.measurement = ReadMeasurement(*measurement, loaded.params);
   }
   if (const std::optional<TableReader> can = root_reader.OptionalTable("can")) {
     const CanNames names = CanNamesOf(loaded.params);
@@ -98,5 +110,7 @@ LoadedConfig LoadConfigFromString(const std::string& text, const std::string& so
   loaded.keys = keys.Take();
   return loaded;
 }
+
+}  // namespace config_detail
 
 }  // namespace ambdrop

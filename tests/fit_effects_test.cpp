@@ -52,7 +52,7 @@ Fitted FitTruth(const std::vector<std::string>& effect, const char* rig = kRig,
   noise.channels = channels;
   Fitted f;
   f.made = MakeMeasuredRecord(testing::LoadTestConfig(rig, truth), noise);
-  const ModelParams declared = testing::LoadTestConfig(rig, timing);
+  const ConfigVariants declared = testing::LoadTestVariants(rig, timing);
   FitRecordOptions options;
   options.rules.threads = 2;
   f.fit = FitRecord(declared, f.made.measurement, f.made.record, options);
@@ -349,7 +349,8 @@ TEST(FitChannels, CurrentsAloneLeaveAllButFluxDecayUndecidable) {
 // the first under another name, so it fits exactly as well.
 TEST(FitVerdicts, EquallyGoodEffectsOfAnotherFamilyAreNamed) {
   const SyntheticMeasurement made = testing::MisalignedPidRecord(Timing());
-  const ModelParams declared = testing::LoadTestConfig(kRig, Timing());
+  const ConfigVariants variants = testing::LoadTestVariants(kRig, Timing());
+  const ModelParams& declared = variants.declared().params;
   const RecordCost cost(declared, made.measurement, made.record, RecordRunOptions{});
   std::vector<Effect> library;
   for (const Effect& e : EffectLibrary(declared)) {
@@ -362,7 +363,7 @@ TEST(FitVerdicts, EquallyGoodEffectsOfAnotherFamilyAreNamed) {
   library.push_back(alias);
   SelectionRules rules;
   rules.threads = 2;
-  const Selection s = SelectEffects(cost, library, cost.NoiseFloor(), rules);
+  const Selection s = SelectEffects(variants, cost, library, cost.NoiseFloor(), rules);
   ASSERT_FALSE(s.chosen.empty()) << s.reason;
   EXPECT_EQ(s.chosen.front(), "tdb_misalignment:de");
   EXPECT_EQ(s.equivalent, std::vector<std::string>{"alias:de"});
@@ -383,7 +384,8 @@ TEST(FitVerdicts, FittedPairsAreReportedAsTried) {
   MeasureOptions noise;
   noise.current_noise_A = 0.005;
   const SyntheticMeasurement made = MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), noise);
-  const ModelParams declared = testing::LoadTestConfig(kRig, Timing());
+  const ConfigVariants variants = testing::LoadTestVariants(kRig, Timing());
+  const ModelParams& declared = variants.declared().params;
   const RecordCost cost(declared, made.measurement, made.record, RecordRunOptions{});
   std::vector<Effect> library;
   for (const Effect& e : EffectLibrary(declared)) {
@@ -392,7 +394,7 @@ TEST(FitVerdicts, FittedPairsAreReportedAsTried) {
   ASSERT_EQ(library.size(), 3u);
   SelectionRules rules;
   rules.threads = 2;
-  const Selection s = SelectEffects(cost, library, cost.NoiseFloor(), rules);
+  const Selection s = SelectEffects(variants, cost, library, cost.NoiseFloor(), rules);
   ASSERT_EQ(s.chosen.size(), 2u) << s.reason;
   std::size_t pairs = 0;
   for (const CandidateScore& c : s.candidates) {

@@ -55,7 +55,8 @@ Fitted Fit(const Rig& rig, const std::vector<std::string>& effect,
   noise.seed = 11;
   const SyntheticMeasurement made =
       MakeMeasuredRecord(testing::LoadTestConfig(rig.config, truth), noise);
-  const ModelParams declared = testing::LoadTestConfig(rig.config, timing);
+  const ConfigVariants variants = testing::LoadTestVariants(rig.config, timing);
+  const ModelParams& declared = variants.declared().params;
   const RecordCost cost(declared, made.measurement, made.record, RecordRunOptions{});
   std::vector<Effect> library;
   for (Effect& e : EffectLibrary(declared)) {
@@ -68,7 +69,7 @@ Fitted Fit(const Rig& rig, const std::vector<std::string>& effect,
   rules.threads = 2;
   Fitted f;
   f.noise_floor = cost.NoiseFloor();
-  f.selection = SelectEffects(cost, library, f.noise_floor, rules);
+  f.selection = SelectEffects(variants, cost, library, f.noise_floor, rules);
   const Selection& s = f.selection;
   std::printf("verdict %s: %s (model floor %.3g, after %.3g)\n", s.verdict.c_str(),
               s.reason.c_str(), s.model_floor, s.model_floor_after);
@@ -154,14 +155,14 @@ TEST(FitOtherRigs, TheLibraryOffersWhatEachTdbModelUses) {
   const auto has = [](const std::vector<std::string>& n, const char* name) {
     return std::find(n.begin(), n.end(), name) != n.end();
   };
-  const ModelParams flexible = testing::LoadTestConfig(kFlexible.config);
+  const ConfigVariants variants = testing::LoadTestVariants(kFlexible.config);
+  const ModelParams& flexible = variants.declared().params;
   const std::vector<std::string> on_balls = names(flexible);
   EXPECT_TRUE(has(on_balls, "friction_coefficient"));
   EXPECT_TRUE(has(on_balls, "tdb_drag_torque:front"));
   for (const Effect& e : EffectLibrary(flexible)) {
     if (e.name != "friction_coefficient") continue;
-    ModelParams p = flexible;
-    e.apply({0.2}, &p);
+    const ModelParams p = WithEffects(variants, {&e}, {{0.2}});
     for (std::size_t i = 0; i < p.tdbs.size(); ++i) {
       const SlipFrictionParams& declared = flexible.tdbs[i].ball_bearing.friction;
       const SlipFrictionParams& fitted = p.tdbs[i].ball_bearing.friction;
@@ -169,7 +170,10 @@ TEST(FitOtherRigs, TheLibraryOffersWhatEachTdbModelUses) {
       EXPECT_NEAR(fitted.static_coefficient / fitted.kinetic_coefficient,
                   declared.static_coefficient / declared.kinetic_coefficient, 1e-12);
     }
-    EXPECT_NE(e.config({0.2}).find("kinetic_coefficient = 0.2"), std::string::npos);
+    const std::vector<std::string> set = e.overrides({0.2});
+    EXPECT_NE(std::find(set.begin(), set.end(),
+                        "tdb.front.ball_bearing_tdb.friction.kinetic_coefficient=0.2"),
+              set.end());
   }
 
   const std::vector<std::string> catcher = names(testing::LoadTestConfig(kCatcher.config));

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "io/config_loader.hpp"
+#include "io/config_variants.hpp"
 #include "io/event_log.hpp"
 #include "io/json_writer.hpp"
 #include "io/measured_csv.hpp"
@@ -209,11 +210,14 @@ int RunFitCommand(const FitOptions& options) {
     return kExitUsage;
   }
   const auto start = std::chrono::steady_clock::now();
-  LoadedConfig config;
+  // The declared config, kept as a tree: each candidate effect is read through it with its own
+  // --set overrides.
+  std::optional<ConfigVariants> variants;
   MeasuredRecord record;
   std::optional<MeasurementParams> from_record;  // an ambdrop run record's own measurement
   try {
-    config = LoadConfig(options.config_path, options.overrides);
+    variants.emplace(ConfigVariants::Load(options.config_path, options.overrides));
+    const LoadedConfig& config = variants->declared();
     if (IsEventLog(options.measured_path)) {
       RunRecordFile file;
       try {
@@ -265,6 +269,7 @@ int RunFitCommand(const FitOptions& options) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitConfig;
   }
+  const LoadedConfig& config = variants->declared();
   const MeasurementParams& m = from_record ? *from_record : *config.measurement;
 
   FitRecordOptions fit_options;
@@ -274,7 +279,7 @@ int RunFitCommand(const FitOptions& options) {
   fit_options.rules.tolerance = options.tolerance;
   std::unique_ptr<FitResult> fit;
   try {
-    fit = FitRecord(config.params, m, record, fit_options);
+    fit = FitRecord(*variants, m, record, fit_options);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitConfig;

@@ -127,7 +127,7 @@ Truth Draw(const Effect& e, const ModelParams& declared, PortableRandom* r) {
 
 // The truth's record, with noise on currents, forces and speeds as the fit tests add it, and
 // the declared rig fitted to it.
-std::unique_ptr<FitResult> MakeAndFit(const ModelParams& truth, const ModelParams& declared,
+std::unique_ptr<FitResult> MakeAndFit(const ModelParams& truth, const ConfigVariants& declared,
                                       int threads, std::uint64_t seed) {
   MeasureOptions noise;
   noise.current_noise_A = 0.005;
@@ -147,11 +147,10 @@ struct Outcome {
   double seconds = 0.0;
 };
 
-Outcome Run(const ModelParams& declared, const Effect& e, const Truth& truth, int threads,
+Outcome Run(const ConfigVariants& declared, const Effect& e, const Truth& truth, int threads,
             std::uint64_t seed) {
-  ModelParams truth_params = declared;
-  e.apply(truth.values, &truth_params);
-  truth_params.simulation.step_s = 0.5 * declared.simulation.step_s;
+  ModelParams truth_params = WithEffects(declared, {&e}, {truth.values});
+  truth_params.simulation.step_s = 0.5 * declared.declared().params.simulation.step_s;
   Outcome o;
   const auto start = std::chrono::steady_clock::now();
   try {
@@ -277,11 +276,11 @@ std::string FamilyOf(const FitResult& fit, const std::string& effect) {
 }
 
 // One variant on one rig: true on a right answer.
-bool RunVariant(const ModelParams& declared, const Variant& v, PortableRandom* random, int threads,
-                std::uint64_t seed, const std::string& rig) {
-  ModelParams truth = declared;
+bool RunVariant(const ConfigVariants& declared, const Variant& v, PortableRandom* random,
+                int threads, std::uint64_t seed, const std::string& rig) {
+  ModelParams truth = declared.declared().params;
   v.make(&truth, random);
-  truth.simulation.step_s = 0.5 * declared.simulation.step_s;
+  truth.simulation.step_s = 0.5 * declared.declared().params.simulation.step_s;
   const auto start = std::chrono::steady_clock::now();
   std::string verdict, chosen, detail;
   bool hit = false;
@@ -356,7 +355,7 @@ int main(int argc, char** argv) {
   PortableRandom random(seed);
   int cases = 0, hits = 0;
   for (const std::string& rig : Split(rigs)) {
-    const ModelParams declared = testing::LoadTestConfig(
+    const ConfigVariants declared = testing::LoadTestVariants(
         rig, {fmt::format("trigger.enabled=true"), fmt::format("trigger.time_s={}", lead_s),
               fmt::format("simulation.duration_s={}", lead_s + after_s)});
     int rig_cases = 0, rig_hits = 0;
@@ -368,8 +367,9 @@ int main(int argc, char** argv) {
         rig_hits += RunVariant(declared, v, &random, threads, seed, rig);
       }
     }
-    for (const Effect& e : variants ? std::vector<Effect>{} : EffectLibrary(declared)) {
-      const Truth truth = Draw(e, declared, &random);
+    const ModelParams& declared_params = declared.declared().params;
+    for (const Effect& e : variants ? std::vector<Effect>{} : EffectLibrary(declared_params)) {
+      const Truth truth = Draw(e, declared_params, &random);
       if (!only.empty() && e.name.find(only) == std::string::npos) continue;
       ++g_case;
       const Outcome o = Run(declared, e, truth, threads, seed);

@@ -14,7 +14,7 @@ namespace {
 void BM_FitHalfSecondRecord(benchmark::State& bench) {
   const std::vector<std::string> timing = {"simulation.duration_s=0.5", "trigger.time_s=0.2"};
   const SyntheticMeasurement made = testing::MisalignedPidRecord(timing);
-  const ModelParams declared = testing::LoadTestConfig(testing::kPidRig, timing);
+  const ConfigVariants declared = testing::LoadTestVariants(testing::kPidRig, timing);
   FitRecordOptions options;
   options.rules.threads = static_cast<int>(bench.range(0));
   std::size_t runs = 0;

@@ -27,7 +27,10 @@ assert [c["effect"] for c in chosen] == ["tdb_misalignment:de"], chosen
 p = chosen[0]["parameters"]
 assert abs(p["x_m"]["value"] - 2e-5) < 4e-6 and abs(p["y_m"]["value"] + 4e-5) < 8e-6, p
 assert p["y_m"]["sigma"] > 0, p
-assert "[tdb.de.misalignment]" in chosen[0]["config"], chosen[0]["config"]
+assert f["schema_version"] == 2, f.get("schema_version")
+lines = chosen[0]["set"]
+assert "tdb.de.misalignment.enabled=true" in lines, lines
+open("set.txt", "w").write("\n".join(lines) + "\n")
 before, after = f["rms_before"], f["rms_after"]
 assert before["overall"] > 3 * after["overall"], (before["overall"], after["overall"])
 assert set(before["channels"]) == set(after["channels"]) and "y_de" in before["channels"]
@@ -40,6 +43,22 @@ print(f"fit: {f['verdict']}, x {p['x_m']['value']:.3g} m, y {p['y_m']['value']:.
       f"overall {before['overall']:.3g} -> {after['overall']:.3g}")
 PY
 grep -q "Verdict: explained" fit/report.md || fail "report.md has no verdict"
+# The fitted effect's --set lines, as the report prints them, are what the config takes: read
+# back through `ambdrop keys`, the offsets are the fitted values to the last bit.
+set_args=()
+while read -r line; do set_args+=(--set "$line"); done <set.txt
+grep -qF -- "--set $(head -n1 set.txt)" fit/report.md || fail "report.md does not print the --set lines"
+"$tool" keys declared.toml "${timing[@]}" "${set_args[@]}" --json >keys.json ||
+  fail "the fitted --set lines do not load: $(cat keys.json)"
+python3 - fit/fit.json keys.json <<'PY'
+import json, sys
+p = json.load(open(sys.argv[1]))["chosen"][0]["parameters"]
+keys = {k["path"]: k for k in json.load(open(sys.argv[2]))["keys"]}
+for axis in ("x_m", "y_m"):
+    read = keys["tdb.de.misalignment." + axis]
+    assert read["value"] == p[axis]["value"], (axis, read["value"], p[axis]["value"])
+    assert read["location"].startswith("--set "), read
+PY
 for plot in channel_y_de.svg residual_y_de.svg orbit_de.svg; do
   grep -q "<svg" "fit/$plot" || fail "no plot $plot"
   grep -q "$plot" fit/report.md || fail "report.md does not show $plot"

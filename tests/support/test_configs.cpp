@@ -11,4 +11,9 @@ ModelParams LoadTestConfig(const std::string& file_name,
   return LoadConfig(ConfigPath(file_name), overrides).params;
 }
 
+ConfigVariants LoadTestVariants(const std::string& file_name,
+                                const std::vector<std::string>& overrides) {
+  return ConfigVariants::Load(ConfigPath(file_name), overrides);
+}
+
 }  // namespace ambdrop::testing

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "io/config_loader.hpp"
+#include "io/config_variants.hpp"
 #include "rt_core/model_params.hpp"
 
 namespace ambdrop::testing {
@@ -13,5 +14,9 @@ std::string ConfigPath(const std::string& file_name);
 /// Loads configs/<file_name> with optional overrides.
 ModelParams LoadTestConfig(const std::string& file_name,
                            const std::vector<std::string>& overrides = {});
+
+/// The same kept as a tree that effects' --set overrides are applied to (what `ambdrop fit` does).
+ConfigVariants LoadTestVariants(const std::string& file_name,
+                                const std::vector<std::string>& overrides = {});
 
 }  // namespace ambdrop::testing

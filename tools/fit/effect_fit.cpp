@@ -42,9 +42,10 @@ constexpr std::size_t kSearchedStarts = 3;
 constexpr double kStep = 0.02;
 
 struct Problem : Eigen::DenseFunctor<double> {
-  Problem(const RecordCost& c, const std::vector<const Effect*>& e, const std::vector<Flat>& f,
-          int budget)
+  Problem(const ConfigVariants& d, const RecordCost& c, const std::vector<const Effect*>& e,
+          const std::vector<Flat>& f, int budget)
       : DenseFunctor<double>(static_cast<int>(f.size()), static_cast<int>(c.size())),
+        declared(d),
         cost(c),
         effects(e),
         flat(f),
@@ -61,7 +62,7 @@ struct Problem : Eigen::DenseFunctor<double> {
   Eigen::VectorXd Run(const Eigen::VectorXd& z) {
     ++runs;
     --runs_left;
-    return cost.Residual(WithEffects(cost.declared(), effects, Values(z)));
+    return cost.Residual(WithEffects(declared, effects, Values(z)));
   }
   int operator()(const Eigen::VectorXd& z, Eigen::VectorXd& fvec) {
     if (runs_left <= 0) return -1;  // out of budget: LM stops and keeps the best so far
@@ -84,6 +85,7 @@ struct Problem : Eigen::DenseFunctor<double> {
     return 0;
   }
 
+  const ConfigVariants& declared;
   const RecordCost& cost;
   const std::vector<const Effect*>& effects;
   const std::vector<Flat>& flat;
@@ -95,16 +97,24 @@ struct Problem : Eigen::DenseFunctor<double> {
 
 }  // namespace
 
-ModelParams WithEffects(const ModelParams& declared, const std::vector<const Effect*>& effects,
-                        const std::vector<std::vector<double>>& values) {
-  ModelParams p = declared;
-  for (std::size_t e = 0; e < effects.size(); ++e) effects[e]->apply(values[e], &p);
-  return p;
+std::vector<std::string> EffectOverrides(const std::vector<const Effect*>& effects,
+                                         const std::vector<std::vector<double>>& values) {
+  std::vector<std::string> out;
+  for (std::size_t e = 0; e < effects.size(); ++e) {
+    const std::vector<std::string> o = effects[e]->overrides(values[e]);
+    out.insert(out.end(), o.begin(), o.end());
+  }
+  return out;
 }
 
-EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& effects,
-                     int max_runs_per_start, const RecordCost* screen,
-                     const std::vector<KnownStart>& known) {
+ModelParams WithEffects(const ConfigVariants& declared, const std::vector<const Effect*>& effects,
+                        const std::vector<std::vector<double>>& values) {
+  return declared.With(EffectOverrides(effects, values)).params;
+}
+
+EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
+                     const std::vector<const Effect*>& effects, int max_runs_per_start,
+                     const RecordCost* screen, const std::vector<KnownStart>& known) {
   std::vector<Flat> flat;
   // Each parameter's starts: what is known of it first, then its own.
   std::vector<std::vector<double>> start_lists;
@@ -128,7 +138,7 @@ EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& e
   // One Levenberg-Marquardt search from z; keeps its best point if it beats the best so far.
   const RecordCost& search_cost = screen != nullptr ? *screen : cost;
   const auto search_from = [&](Eigen::VectorXd z) {
-    Problem problem(search_cost, effects, flat, max_runs_per_start);
+    Problem problem(declared, search_cost, effects, flat, max_runs_per_start);
     Eigen::LevenbergMarquardt<Problem> lm(problem);
     lm.setXtol(1e-4);
     lm.setFtol(1e-4);
@@ -171,7 +181,7 @@ EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& e
   if (points.size() > kSearchedStarts) {
     std::vector<std::pair<double, std::size_t>> ranked;
     for (std::size_t s = 0; s < points.size(); ++s) {
-      Problem probe(search_cost, effects, flat, 1);
+      Problem probe(declared, search_cost, effects, flat, 1);
       Eigen::VectorXd f;
       probe(points[s], f);
       fit.evaluations += probe.runs;
@@ -209,7 +219,7 @@ EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& e
   if (screen != nullptr) {
     // The screen's optimum refined on the whole cost, which is what the candidates are judged
     // by; the start point itself is the first run, so the refinement never ends worse.
-    Problem problem(cost, effects, flat, max_runs_per_start);
+    Problem problem(declared, cost, effects, flat, max_runs_per_start);
     Eigen::LevenbergMarquardt<Problem> lm(problem);
     lm.setXtol(1e-4);
     lm.setFtol(1e-4);
@@ -225,7 +235,7 @@ EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& e
   }
 
   // The Jacobian at the optimum, in the parameters' own units, for their uncertainty.
-  Problem at(cost, effects, flat, static_cast<int>(flat.size()) + 1);
+  Problem at(declared, cost, effects, flat, static_cast<int>(flat.size()) + 1);
   Eigen::MatrixXd jz(static_cast<Eigen::Index>(cost.size()),
                      static_cast<Eigen::Index>(flat.size()));
   at.df(best_z, jz);

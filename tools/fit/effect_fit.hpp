@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "io/config_variants.hpp"
 #include "tools/fit/effect_library.hpp"
 #include "tools/fit/record_cost.hpp"
 
@@ -28,8 +29,13 @@ struct EffectFit {
   int evaluations = 0;                      ///< model runs
 };
 
-/// Model params with the effects applied at `values` (per effect).
-ModelParams WithEffects(const ModelParams& declared, const std::vector<const Effect*>& effects,
+/// The `--set` overrides of the effects at `values` (per effect), in order.
+std::vector<std::string> EffectOverrides(const std::vector<const Effect*>& effects,
+                                         const std::vector<std::vector<double>>& values);
+
+/// Model params with the effects applied at `values` (per effect): the declared config read
+/// again with their overrides. Throws ConfigError if the config refuses a value.
+ModelParams WithEffects(const ConfigVariants& declared, const std::vector<const Effect*>& effects,
                         const std::vector<std::vector<double>>& values);
 
 /// Values an effect's parameters are known to fit well (its own single fit): searches start
@@ -45,8 +51,8 @@ struct KnownStart {
 /// refined on `cost` itself: where the drop turns chaotic after its impacts, `cost` is too
 /// rough for a gradient from afar, while the early part leads to the right basin.
 /// `known`, if not empty, has one entry per effect.
-EffectFit FitEffects(const RecordCost& cost, const std::vector<const Effect*>& effects,
-                     int max_runs_per_start = 40, const RecordCost* screen = nullptr,
-                     const std::vector<KnownStart>& known = {});
+EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
+                     const std::vector<const Effect*>& effects, int max_runs_per_start = 40,
+                     const RecordCost* screen = nullptr, const std::vector<KnownStart>& known = {});
 
 }  // namespace ambdrop

@@ -7,6 +7,7 @@
 #include <tuple>
 #include <utility>
 
+#include "io/config_variants.hpp"
 #include "rt_core/limits.hpp"
 
 namespace ambdrop {
@@ -15,10 +16,15 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 using Q = MeasuredQuantity;
 
-// The TDB or sensor an effect names: the library makes effects for the declared ones only.
-template <typename T>
-T& Named(std::vector<T>& list, const std::string& name) {
-  return *std::find_if(list.begin(), list.end(), [&](const T& x) { return x.name == name; });
+// One `--set` line: "path=value", the value as TOML reads it back to the same double.
+std::string Set(const std::string& path, double value) {
+  return path + "=" + OverrideNumber(value);
+}
+std::string SetText(const std::string& path, const std::string& value) {
+  return path + "=\"" + value + "\"";
+}
+std::string SetTrue(const std::string& path) {
+  return path + "=true";
 }
 
 // Whether a TDB's model uses a friction coefficient between journal and inner race: contact-law,
@@ -47,25 +53,17 @@ double StaticCoefficient(const SlipFrictionParams& declared, double mu) {
              : std::max(declared.static_coefficient, mu);
 }
 
-// Sets the coefficient a TDB slides with (the ball-bearing TDB's static one in proportion), and
-// says it as config keys.
-void SetSlidingCoefficient(double mu, TdbParams* t) {
-  if (t->model == TdbModelKind::kBallBearing) {
-    SlipFrictionParams& f = t->ball_bearing.friction;
-    f.static_coefficient = StaticCoefficient(f, mu);
-    f.kinetic_coefficient = mu;
-  } else {
-    t->friction.coefficient = mu;
-  }
-}
-std::string SlidingCoefficientConfig(const TdbParams& t, double mu) {
+// The keys of the coefficient a TDB slides with (the ball-bearing TDB's static one in
+// proportion to the declared pair).
+void SetSlidingCoefficient(const TdbParams& t, double mu, std::vector<std::string>* out) {
   if (t.model == TdbModelKind::kBallBearing) {
-    return fmt::format(
-        "[tdb.{}.ball_bearing_tdb.friction]\nstatic_coefficient = {:.6g}\n"
-        "kinetic_coefficient = {:.6g}\n",
-        t.name, StaticCoefficient(t.ball_bearing.friction, mu), mu);
+    const std::string table = "tdb." + t.name + ".ball_bearing_tdb.friction.";
+    out->push_back(
+        Set(table + "static_coefficient", StaticCoefficient(t.ball_bearing.friction, mu)));
+    out->push_back(Set(table + "kinetic_coefficient", mu));
+  } else {
+    out->push_back(Set("tdb." + t.name + ".friction.coefficient", mu));
   }
-  return fmt::format("[tdb.{}.friction]\ncoefficient = {:.6g}\n", t.name, mu);
 }
 
 // The inner race's drag torque enters its spin equation (rt_core/tdb_common.hpp
@@ -92,13 +90,10 @@ Effect TdbMisalignment(const TdbParams& t) {
                   {"y_m", -0.8 * c, 0.8 * c, {0.0, 0.3 * c, -0.3 * c}}};
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
   e.probe = {0.5 * c, -0.5 * c};
-  e.apply = [name](const std::vector<double>& v, ModelParams* p) {
-    TdbParams& t = Named(p->tdbs, name);
-    t.misalignment = {true, v[0], v[1]};
-  };
-  e.config = [name](const std::vector<double>& v) {
-    return fmt::format("[tdb.{}.misalignment]\nenabled = true\nx_m = {:.6g}\ny_m = {:.6g}\n", name,
-                       v[0], v[1]);
+  const std::string table = "tdb." + name + ".misalignment.";
+  e.overrides = [table](const std::vector<double>& v) {
+    return std::vector<std::string>{SetTrue(table + "enabled"), Set(table + "x_m", v[0]),
+                                    Set(table + "y_m", v[1])};
   };
   return e;
 }
@@ -116,11 +111,8 @@ Effect TdbClearance(const TdbParams& t) {
   e.parameters = {{"clearance_m", 0.5 * c, 2.0 * c, {c, 1.3 * c, 0.8 * c}}};
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
   e.probe = {1.5 * c};
-  e.apply = [name](const std::vector<double>& v, ModelParams* p) {
-    Named(p->tdbs, name).clearance_m = v[0];
-  };
-  e.config = [name](const std::vector<double>& v) {
-    return fmt::format("[tdb.{}]  # keys of the TDB's table\nclearance_m = {:.6g}\n", name, v[0]);
+  e.overrides = [name](const std::vector<double>& v) {
+    return std::vector<std::string>{Set("tdb." + name + ".clearance_m", v[0])};
   };
   return e;
 }
@@ -142,14 +134,10 @@ Effect FrictionCoefficientOf(const std::vector<TdbParams>& tdbs, std::string nam
   e.parameters = {{"coefficient", 0.01, 0.8, {mu, 0.5 * mu, std::min(0.8, 2.0 * mu)}}};
   e.revealed_by = {Q::kDisplacement, Q::kTdbSpeed, Q::kTdbNormalForce, Q::kRotorSpeed};
   e.probe = {mu < 0.4 ? 2.0 * mu : 0.5 * mu};
-  // Applied to a copy of the declared params, so the ball-bearing TDBs' proportion is theirs.
-  e.apply = [rubbing](const std::vector<double>& v, ModelParams* p) {
-    for (const TdbParams& t : rubbing) SetSlidingCoefficient(v[0], &Named(p->tdbs, t.name));
-  };
-  e.config = [rubbing](const std::vector<double>& v) {
-    std::string s;
-    for (const TdbParams& t : rubbing) s += SlidingCoefficientConfig(t, v[0]);
-    return s;
+  e.overrides = [rubbing](const std::vector<double>& v) {
+    std::vector<std::string> out;
+    for (const TdbParams& t : rubbing) SetSlidingCoefficient(t, v[0], &out);
+    return out;
   };
   return e;
 }
@@ -203,27 +191,18 @@ Effect UnbalanceIn(std::vector<UnbalancePlane> planes, std::string name, std::st
   e.parameters = UnbalanceParameters();
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
   e.probe = {1e-3, 0.0};
-  e.apply = [planes](const std::vector<double>& v, ModelParams* p) {
+  // A unit mass: the fitted size is its eccentricity, mass x eccentricity in one number.
+  e.overrides = [planes](const std::vector<double>& v) {
+    std::vector<std::string> out;
     for (const UnbalancePlane& plane : planes) {
-      UnbalanceParams u;
-      u.name = plane.name;
-      u.position_m = plane.position_m;
-      u.mass_kg = 1.0;
-      u.eccentricity_m = v[0];
-      u.phase_rad = v[1] + plane.phase_offset_rad;
-      p->unbalances.push_back(u);
+      const std::string table = std::string("unbalance.") + plane.name + ".";
+      out.push_back(Set(table + "position_m", plane.position_m));
+      out.push_back(Set(table + "mass_kg", 1.0));
+      out.push_back(Set(table + "eccentricity_m", v[0]));
+      out.push_back(
+          Set(table + "phase_rad", std::remainder(v[1] + plane.phase_offset_rad, 2 * kPi)));
     }
-  };
-  e.config = [planes](const std::vector<double>& v) {
-    std::string s;
-    for (const UnbalancePlane& plane : planes) {
-      s += fmt::format(
-          "[unbalance.{}]\nposition_m = {:.6g}\nmass_kg = 1.0\neccentricity_m = {:.6g}\n"
-          "phase_rad = {:.6g}\n",
-          plane.name, plane.position_m, v[0],
-          std::remainder(v[1] + plane.phase_offset_rad, 2 * kPi));
-    }
-    return s;
+    return out;
   };
   return e;
 }
@@ -259,15 +238,13 @@ Effect FluxDecayOf(std::vector<std::string> ambs, std::string name, std::string 
   e.parameters = {{"time_constant_s", 1e-4, 0.1, {1e-4, 2e-3, 1e-2}}};
   e.revealed_by = {Q::kDisplacement, Q::kCurrent, Q::kTdbNormalForce};
   e.probe = {2e-2};  // long: the declared model's loss is instant
-  e.apply = [ambs](const std::vector<double>& v, ModelParams* p) {
-    for (const std::string& a : ambs) Named(p->ambs, a).flux_decay = {true, v[0]};
-  };
-  e.config = [ambs](const std::vector<double>& v) {
-    std::string s;
+  e.overrides = [ambs](const std::vector<double>& v) {
+    std::vector<std::string> out;
     for (const std::string& a : ambs) {
-      s += fmt::format("[amb.{}.flux_decay]\nenabled = true\ntime_constant_s = {:.6g}\n", a, v[0]);
+      out.push_back(SetTrue("amb." + a + ".flux_decay.enabled"));
+      out.push_back(Set("amb." + a + ".flux_decay.time_constant_s", v[0]));
     }
-    return s;
+    return out;
   };
   return e;
 }
@@ -301,18 +278,16 @@ Effect SensorRunoutHarmonic(const SensorParams& s, double clearance, int order) 
                   {"phase_" + x + "_rad", -kPi, kPi, {0.0, 0.5 * kPi, kPi, -0.5 * kPi}, true}};
   e.revealed_by = {Q::kDisplacement};
   e.probe = {0.1 * clearance, 0.0};
-  e.apply = [name, order](const std::vector<double>& v, ModelParams* p) {
-    SensorRunoutParams& r = Named(p->sensors, name).runout;
-    if (!r.enabled) r = {};  // a disabled table's numbers are not declared
-    r.enabled = true;
-    (order == 1 ? r.amplitude_1x_m : r.amplitude_2x_m) = std::abs(v[0]);
-    (order == 1 ? r.phase_1x_rad : r.phase_2x_rad) = v[1];
-  };
-  e.config = [name, x](const std::vector<double>& v) {
-    return fmt::format(
-        "[sensor.{0}.runout]  # keys of the runout table\nenabled = true\namplitude_{1}_m = "
-        "{2:.6g}\nphase_{1}_rad = {3:.6g}\n",
-        name, x, std::abs(v[0]), std::remainder(v[1], 2 * kPi));
+  const std::string table = "sensor." + name + ".runout.";
+  const std::string other = order == 1 ? "2x" : "1x";
+  const bool declared = s.runout.enabled;
+  e.overrides = [table, x, other, declared](const std::vector<double>& v) {
+    std::vector<std::string> out{SetTrue(table + "enabled"),
+                                 Set(table + "amplitude_" + x + "_m", std::abs(v[0])),
+                                 Set(table + "phase_" + x + "_rad", std::remainder(v[1], 2 * kPi))};
+    // A disabled table's numbers are not declared: the other harmonic stays off.
+    if (!declared) out.push_back(Set(table + "amplitude_" + other + "_m", 0.0));
+    return out;
   };
   return e;
 }
@@ -327,15 +302,9 @@ Effect SensorGainOffset(const SensorParams& s, double clearance) {
                   {"offset_m", -0.5 * clearance, 0.5 * clearance, {s.offset_m}}};
   e.revealed_by = {Q::kDisplacement};
   e.probe = {1.2 * s.gain, s.offset_m + 0.1 * clearance};
-  e.apply = [name](const std::vector<double>& v, ModelParams* p) {
-    SensorParams& s = Named(p->sensors, name);
-    s.gain = v[0];
-    s.offset_m = v[1];
-  };
-  e.config = [name](const std::vector<double>& v) {
-    return fmt::format(
-        "[sensor.{}]  # keys of the sensor's table\ngain = {:.6g}\noffset_m = {:.6g}\n", name, v[0],
-        v[1]);
+  e.overrides = [name](const std::vector<double>& v) {
+    return std::vector<std::string>{Set("sensor." + name + ".gain", v[0]),
+                                    Set("sensor." + name + ".offset_m", v[1])};
   };
   return e;
 }
@@ -347,21 +316,20 @@ Effect SensorLag(const SensorParams& s, double sample_s) {
   e.family = "sensor_lag";
   e.description = fmt::format("transport delay and first-order low-pass of sensor {}", name);
   // The filter as its time constant: 0 is no filter, and the cost is smooth through it.
-  // The delay is whole samples of the controller (controller_if/sensor_emulator.cpp).
-  e.parameters = {{"delay_s", 0.0, 1e-3, {0.0, 2 * sample_s, 5 * sample_s}, false, sample_s},
+  // The delay is whole samples of the sensor (controller_if/sensor_emulator.cpp), at most what
+  // its ring holds: a rig without a controller samples at every step.
+  const double longest = std::min(1e-3, (kMaxSensorDelaySamples - 1) * sample_s);
+  e.parameters = {{"delay_s", 0.0, longest, {0.0, 2 * sample_s, 5 * sample_s}, false, sample_s},
                   {"filter_time_constant_s", 0.0, 1e-3, {0.0, 2e-4, 0.0}}};
   e.revealed_by = {Q::kDisplacement};
   // At the delay's bound: a lag shows only weakly in a drop.
-  e.probe = {std::floor(1e-3 / sample_s) * sample_s, 5e-4};
-  e.apply = [name](const std::vector<double>& v, ModelParams* p) {
-    SensorParams& s = Named(p->sensors, name);
-    s.lag.enabled = true;
-    s.lag.delay_s = std::max(0.0, v[0]);
-    s.lag.cutoff_Hz = v[1] > 1e-7 ? 1.0 / (2 * kPi * v[1]) : 0.0;
-  };
-  e.config = [name](const std::vector<double>& v) {
-    return fmt::format("[sensor.{}.lag]\nenabled = true\ndelay_s = {:.6g}\ncutoff_Hz = {:.6g}\n",
-                       name, std::max(0.0, v[0]), v[1] > 1e-7 ? 1.0 / (2 * kPi * v[1]) : 0.0);
+  e.probe = {std::floor(longest / sample_s) * sample_s, 5e-4};
+  // The filter's time constant becomes its cutoff; below 0.1 us it is no filter (0 Hz).
+  const std::string table = "sensor." + name + ".lag.";
+  e.overrides = [table](const std::vector<double>& v) {
+    return std::vector<std::string>{
+        SetTrue(table + "enabled"), Set(table + "delay_s", std::max(0.0, v[0])),
+        Set(table + "cutoff_Hz", v[1] > 1e-7 ? 1.0 / (2 * kPi * v[1]) : 0.0)};
   };
   return e;
 }
@@ -377,11 +345,9 @@ Effect TdbDrag(const TdbParams& t) {
   e.parameters = {{"drag_torque_N_m", 0.0, 5.0, {0.0, 0.05, 0.5}, false, 0.0, true}};
   e.revealed_by = {Q::kTdbSpeed, Q::kDisplacement, Q::kRotorSpeed};
   e.probe = {2.0};
-  e.apply = [name](const std::vector<double>& v, ModelParams* p) {
-    Named(p->tdbs, name).spin.drag_torque_N_m = std::max(0.0, v[0]);
-  };
-  e.config = [name](const std::vector<double>& v) {
-    return fmt::format("[tdb.{}.spin]\ndrag_torque_N_m = {:.6g}\n", name, std::max(0.0, v[0]));
+  e.overrides = [name](const std::vector<double>& v) {
+    return std::vector<std::string>{
+        Set("tdb." + name + ".spin.drag_torque_N_m", std::max(0.0, v[0]))};
   };
   return e;
 }
@@ -403,24 +369,18 @@ Effect RibbonDryFriction(const TdbParams& t) {
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
   e.probe = {1000.0};
   const KelvinVoigtRibbonParams kv = t.four_dof.kelvin_voigt;
-  e.apply = [name, kv](const std::vector<double>& v, ModelParams* p) {
-    TdbParams& t = Named(p->tdbs, name);
-    DahlRibbonParams& d = t.four_dof.dahl;
-    t.four_dof.ribbon = RibbonLaw::kDahl;
-    d.slipping_threshold_N = std::max(0.0, v[0]);
-    d.threshold_scale = 1.0;
-    d.slipping_stiffness_N_per_m = kv.stiffness_N_per_m;
-    d.beta_per_m = 1e6;
-    d.upper_hardening_N = d.lower_hardening_N = 50.0;
-    d.upper_hardening_rate_per_m = d.lower_hardening_rate_per_m = 2.5e4;
-  };
-  e.config = [name, kv](const std::vector<double>& v) {
-    return fmt::format(
-        "[tdb.{0}.four_dof]\nribbon = \"dahl\"\n[tdb.{0}.four_dof.dahl]\n"
-        "slipping_threshold_N = {1:.6g}\nslipping_stiffness_N_per_m = {2:.6g}\nbeta_per_m = 1e6\n"
-        "upper_hardening_N = 50.0\nupper_hardening_rate_per_m = 2.5e4\nlower_hardening_N = 50.0\n"
-        "lower_hardening_rate_per_m = 2.5e4\n",
-        name, std::max(0.0, v[0]), kv.stiffness_N_per_m);
+  const std::string table = "tdb." + name + ".four_dof.";
+  e.overrides = [table, kv](const std::vector<double>& v) {
+    const std::string dahl = table + "dahl.";
+    return std::vector<std::string>{SetText(table + "ribbon", "dahl"),
+                                    Set(dahl + "slipping_threshold_N", std::max(0.0, v[0])),
+                                    Set(dahl + "threshold_scale", 1.0),
+                                    Set(dahl + "slipping_stiffness_N_per_m", kv.stiffness_N_per_m),
+                                    Set(dahl + "beta_per_m", 1e6),
+                                    Set(dahl + "upper_hardening_N", 50.0),
+                                    Set(dahl + "upper_hardening_rate_per_m", 2.5e4),
+                                    Set(dahl + "lower_hardening_N", 50.0),
+                                    Set(dahl + "lower_hardening_rate_per_m", 2.5e4)};
   };
   return e;
 }
@@ -440,18 +400,13 @@ Effect RibbonCrossCoupling(const TdbParams& t) {
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
   e.probe = {1.0};
   const KelvinVoigtRibbonParams kv = t.four_dof.kelvin_voigt;
-  e.apply = [name, kv](const std::vector<double>& v, ModelParams* p) {
-    TdbParams& t = Named(p->tdbs, name);
-    t.four_dof.ribbon = RibbonLaw::kCrossCoupled;
-    t.four_dof.cross_coupled.stiffness_N_per_m = kv.stiffness_N_per_m;
-    t.four_dof.cross_coupled.damping_N_s_per_m = kv.damping_N_s_per_m;
-    t.four_dof.cross_coupled.cross_coupling = std::max(0.0, v[0]);
-  };
-  e.config = [name, kv](const std::vector<double>& v) {
-    return fmt::format(
-        "[tdb.{0}.four_dof]\nribbon = \"cross_coupled\"\n[tdb.{0}.four_dof.cross_coupled]\n"
-        "stiffness_N_per_m = {1:.6g}\ndamping_N_s_per_m = {2:.6g}\ncross_coupling = {3:.6g}\n",
-        name, kv.stiffness_N_per_m, kv.damping_N_s_per_m, std::max(0.0, v[0]));
+  const std::string table = "tdb." + name + ".four_dof.";
+  e.overrides = [table, kv](const std::vector<double>& v) {
+    const std::string cc = table + "cross_coupled.";
+    return std::vector<std::string>{SetText(table + "ribbon", "cross_coupled"),
+                                    Set(cc + "stiffness_N_per_m", kv.stiffness_N_per_m),
+                                    Set(cc + "damping_N_s_per_m", kv.damping_N_s_per_m),
+                                    Set(cc + "cross_coupling", std::max(0.0, v[0]))};
   };
   return e;
 }
@@ -489,13 +444,17 @@ std::vector<Effect> EffectLibrary(const ModelParams& declared) {
       for (const AmbParams& a : declared.ambs) effects.push_back(FluxDecayAt(a));
     }
   }
+  // The sensors are sampled at the controller's rate, or at every step without a controller.
+  const double sensor_sample_s = declared.controller.kind == ControllerKind::kNone
+                                     ? declared.simulation.step_s
+                                     : 1.0 / declared.controller.rate_Hz;
   for (const SensorParams& s : declared.sensors) {
     if (!s.runout.enabled) effects.push_back(SensorRunoutHarmonic(s, clearance, 1));
     if (!s.runout.enabled || s.runout.amplitude_2x_m == 0.0) {
       effects.push_back(SensorRunoutHarmonic(s, clearance, 2));
     }
     effects.push_back(SensorGainOffset(s, clearance));
-    if (!s.lag.enabled) effects.push_back(SensorLag(s, 1.0 / declared.controller.rate_Hz));
+    if (!s.lag.enabled) effects.push_back(SensorLag(s, sensor_sample_s));
   }
   for (const TdbParams& t : declared.tdbs) {
     if (HasDragTorque(t)) effects.push_back(TdbDrag(t));

@@ -1,8 +1,8 @@
 #pragma once
 // Step c/d of `ambdrop fit`: the model extensions a fit may add, each one of the config's
-// effect switches with the parameters it fits. An effect changes ModelParams (the same fields
-// the config's keys set) and can say itself as config keys, so a fitted effect goes straight
-// into the user's config.
+// effect switches with the parameters it fits. An effect is a function from its parameters to
+// `--set` overrides of the declared config, so a fitted effect goes straight into the user's
+// command line or config.
 #include <functional>
 #include <string>
 #include <vector>
@@ -39,10 +39,12 @@ struct Effect {
   /// displacements only once the race has caught up with the journal, which a short record
   /// does not reach.
   std::vector<double> probe;
-  /// Sets the effect with these parameter values on a copy of the declared params.
-  std::function<void(const std::vector<double>&, ModelParams*)> apply;
-  /// The config keys that switch it on with these values (TOML lines, "[table]" headers).
-  std::function<std::string(const std::vector<double>&)> config;
+  /// The `--set` overrides that switch it on with these parameter values
+  /// ("tdb.de.misalignment.x_m=1.2e-05"): applied to the declared config through the same path
+  /// as the command line's --set (io/config_variants.hpp), so the config's own checks hold, and
+  /// printed by the report as they are. One effect may set several keys (a lag's time constant
+  /// is its filter's cutoff).
+  std::function<std::vector<std::string>(const std::vector<double>&)> overrides;
 };
 
 /// Every effect that applies to this rig and that the declared config does not already have

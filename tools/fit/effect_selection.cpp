@@ -60,8 +60,9 @@ double OverallRms(const RecordCost& cost, double sse) {
   return std::sqrt(sse / std::max(cost.channels(), 1));
 }
 
-Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& library,
-                        double noise_floor, const SelectionRules& rules) {
+Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
+                        const std::vector<Effect>& library, double noise_floor,
+                        const SelectionRules& rules) {
   Selection s;
   s.noise_floor = noise_floor;
   const Eigen::VectorXd residual_before = cost.Residual(cost.declared());
@@ -101,7 +102,7 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
     c.decidable = Decidable(e, cost.measurement());
     if (!c.decidable) return;
     if (!e.probe.empty()) {
-      const Eigen::VectorXd probed = cost.Residual(WithEffects(cost.declared(), {&e}, {e.probe}));
+      const Eigen::VectorXd probed = cost.Residual(WithEffects(declared, {&e}, {e.probe}));
       c.reach = OverallRms(cost, (probed - residual_before).squaredNorm());
       // Even strong, it would stay within the limit: no fit could tell it from its absence.
       c.decidable = c.reach > s.limit;
@@ -111,7 +112,7 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
     // the full library on a flexible rotor).
     if (at_floor) return;
     c.tried = true;
-    c.fit = FitEffects(cost, {&e}, rules.max_runs_per_start, search);
+    c.fit = FitEffects(declared, cost, {&e}, rules.max_runs_per_start, search);
     c.rms_after = OverallRms(cost, c.fit.sse);
     c.bic = Bic(c.fit.sse, cost.size(), Parameters(c.fit));
     c.delta_bic = c.bic - s.bic_before;
@@ -137,7 +138,7 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
         if (e.name == name) effects.push_back(&e);
       }
     }
-    const ModelParams fitted = WithEffects(cost.declared(), effects, f.values);
+    const ModelParams fitted = WithEffects(declared, effects, f.values);
     RecordRunOptions half = cost.run_options();
     half.step_s = 0.5 * (half.step_s > 0 ? half.step_s : fitted.simulation.step_s);
     const Eigen::VectorXd at = cost.Residual(fitted);
@@ -158,7 +159,7 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
                             : p.magnitude ? 1e-3 * std::max(std::abs(v[e][i]), 1e-3 * range)
                                           : 1e-3 * range;
         v[e][i] += v[e][i] + step <= p.upper || p.periodic ? step : -step;
-        nudged += (cost.Residual(WithEffects(cost.declared(), effects, v)) - at).squaredNorm();
+        nudged += (cost.Residual(WithEffects(declared, effects, v)) - at).squaredNorm();
         ++count;
       }
     }
@@ -197,7 +198,7 @@ Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& libra
           // explains better.
           const CandidateScore& alone = singles[order[p + 1]];
           const bool wide = p < static_cast<std::size_t>(rules.pair_partners);
-          c.fit = FitEffects(cost, {&first, &second}, rules.max_runs_per_start, search,
+          c.fit = FitEffects(declared, cost, {&first, &second}, rules.max_runs_per_start, search,
                              {{best.fit.values.front(), true}, {alone.fit.values.front(), !wide}});
           c.rms_after = OverallRms(cost, c.fit.sse);
           c.bic = Bic(c.fit.sse, cost.size(), Parameters(c.fit));

@@ -107,7 +107,8 @@ double AboveNoise(double rms, double noise_floor);
 /// The overall relative RMS of a residual vector of `cost` (sqrt(SSE / channels)).
 double OverallRms(const RecordCost& cost, double sse);
 
-Selection SelectEffects(const RecordCost& cost, const std::vector<Effect>& library,
-                        double noise_floor, const SelectionRules& rules);
+Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
+                        const std::vector<Effect>& library, double noise_floor,
+                        const SelectionRules& rules);
 
 }  // namespace ambdrop

@@ -7,9 +7,10 @@
 
 namespace ambdrop {
 
-std::unique_ptr<FitResult> FitRecord(const ModelParams& declared, const MeasurementParams& m,
+std::unique_ptr<FitResult> FitRecord(const ConfigVariants& config, const MeasurementParams& m,
                                      const MeasuredRecord& record,
                                      const FitRecordOptions& options) {
+  const ModelParams& declared = config.declared().params;
   auto fit = std::make_unique<FitResult>();
   const RecordCost cost(declared, m, record, options.run);
   for (const std::size_t c : cost.left_out()) {
@@ -27,13 +28,14 @@ std::unique_ptr<FitResult> FitRecord(const ModelParams& declared, const Measurem
   }
   fit->before = cost.Simulate(declared);
   fit->library = EffectLibrary(declared);
-  fit->selection = SelectEffects(cost, fit->library, cost.NoiseFloor(), options.rules);
+  fit->selection = SelectEffects(config, cost, fit->library, cost.NoiseFloor(), options.rules);
   for (const std::string& name : fit->selection.chosen) {
     for (const Effect& e : fit->library) {
       if (e.name == name) fit->chosen.push_back(&e);
     }
   }
-  fit->fitted = WithEffects(declared, fit->chosen, fit->selection.chosen_fit.values);
+  fit->fitted_overrides = EffectOverrides(fit->chosen, fit->selection.chosen_fit.values);
+  fit->fitted = config.With(fit->fitted_overrides).params;
   fit->after = cost.Simulate(fit->fitted);
   fit->residual_before = ComputeResiduals(declared, m, record, fit->before, cost.compare_from_s());
   fit->residual_after = ComputeResiduals(declared, m, record, fit->after, cost.compare_from_s());

@@ -19,7 +19,9 @@ struct FitResult {
   std::vector<Effect> library;
   Selection selection;
   std::vector<const Effect*> chosen;  ///< into library, in selection.chosen order
-  ModelParams fitted;                 ///< the declared params with the chosen effects
+  /// The chosen effects as `--set` lines, and the declared config read with them.
+  std::vector<std::string> fitted_overrides;
+  ModelParams fitted;
   SimulatedRecord before;
   SimulatedRecord after;
   ResidualReport residual_before;
@@ -30,7 +32,7 @@ struct FitResult {
 
 /// Throws (std::runtime_error and its kin) when the record cannot be used with the model, or
 /// none of its channels moves beyond its noise (there would be nothing to compare).
-std::unique_ptr<FitResult> FitRecord(const ModelParams& declared,
+std::unique_ptr<FitResult> FitRecord(const ConfigVariants& declared,
                                      const MeasurementParams& measurement,
                                      const MeasuredRecord& record, const FitRecordOptions& options);
 

@@ -67,6 +67,8 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   const Selection& s = *o.selection;
   JsonWriter json;
   json.BeginObject();
+  // 2: a chosen effect's "set" (its --set lines) replaced its TOML text "config".
+  json.Key("schema_version").Integer(2);
   json.Key("config").String(o.config_path);
   json.Key("measured").String(o.measured_path);
   json.Key("verdict").String(s.verdict);
@@ -110,7 +112,12 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     json.Key("description").String(o.chosen[e]->description);
     json.Key("parameters");
     Parameters(json, s.chosen_fit, o.chosen[e]->name);
-    json.Key("config").String(o.chosen[e]->config(s.chosen_fit.values[e]));
+    // What `--set` takes, as it was applied: each line one override of the declared config.
+    json.Key("set").BeginArray();
+    for (const std::string& line : o.chosen[e]->overrides(s.chosen_fit.values[e])) {
+      json.String(line);
+    }
+    json.EndArray();
     json.EndObject();
   }
   json.EndArray();
@@ -200,12 +207,10 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
           md += fmt::format("  - {} = {:.6g} ± {:.2g}\n", p.name, p.value, p.sigma);
         }
       }
-      md += "\n  ```toml\n";
-      std::string cfg = o.chosen[e]->config(s.chosen_fit.values[e]);
-      for (std::size_t pos = 0; pos < cfg.size();) {
-        const std::size_t nl = cfg.find('\n', pos);
-        md += "  " + cfg.substr(pos, nl - pos) + "\n";
-        pos = nl == std::string::npos ? cfg.size() : nl + 1;
+      // Exactly what was applied: the --set lines of the declared config.
+      md += "\n  ```\n";
+      for (const std::string& line : o.chosen[e]->overrides(s.chosen_fit.values[e])) {
+        md += "  --set " + line + "\n";
       }
       md += "  ```\n";
     }

@@ -1,0 +1,143 @@
+// The fit's effects are `--set` overrides of the declared config (tools/fit/effect_library.hpp).
+// What the report prints must be what was applied, and each line must reach the model: a line
+// whose table the TDB's kind does not read, or a value the config refuses, would make a fitted
+// effect that changes nothing, or one the user cannot paste back.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/config_variants.hpp"
+#include "test_configs.hpp"
+#include "tools/fit/effect_fit.hpp"
+#include "tools/fit/effect_library.hpp"
+
+namespace ambdrop {
+namespace {
+
+// Every rig in configs/ (the scenarios are runs of these rigs).
+std::vector<std::string> Rigs() {
+  std::vector<std::string> rigs;
+  for (const auto& entry : std::filesystem::directory_iterator(testing::ConfigPath(""))) {
+    if (entry.path().extension() == ".toml") rigs.push_back(entry.path().filename().string());
+  }
+  std::sort(rigs.begin(), rigs.end());
+  return rigs;
+}
+
+const ConfigKey* Find(const std::vector<ConfigKey>& keys, const std::string& path) {
+  for (const ConfigKey& k : keys) {
+    if (k.path == path) return &k;
+  }
+  return nullptr;
+}
+
+// The value sets an effect is applied at: its probe, its first starts, and each parameter at
+// either bound (the fit searches the whole box, so the config must take all of it).
+std::vector<std::vector<double>> Corners(const Effect& e) {
+  std::vector<double> start;
+  for (const EffectParameter& p : e.parameters) start.push_back(p.starts.front());
+  std::vector<std::vector<double>> sets = {e.probe, start};
+  for (std::size_t i = 0; i < e.parameters.size(); ++i) {
+    if (e.parameters[i].periodic) continue;
+    for (const double bound : {e.parameters[i].lower, e.parameters[i].upper}) {
+      std::vector<double> v = start;
+      v[i] = bound;
+      sets.push_back(v);
+    }
+  }
+  return sets;
+}
+
+TEST(FitEffectOverrides, EveryLineIsReadBackExactlyOnEveryRig) {
+  int effects = 0;
+  for (const std::string& rig : Rigs()) {
+    SCOPED_TRACE(rig);
+    const ConfigVariants variants = testing::LoadTestVariants(rig);
+    for (const Effect& e : EffectLibrary(variants.declared().params)) {
+      SCOPED_TRACE(e.name);
+      ++effects;
+      for (const std::vector<double>& values : Corners(e)) {
+        const std::vector<std::string> lines = e.overrides(values);
+        ASSERT_FALSE(lines.empty());
+        LoadedConfig applied;
+        try {
+          applied = variants.With(lines);
+        } catch (const ConfigError& error) {
+          ADD_FAILURE() << "the config refuses the effect inside its fit range: " << error.what();
+          continue;
+        }
+        for (const std::string& line : lines) {
+          const std::size_t equals = line.find('=');
+          ASSERT_NE(equals, std::string::npos) << line;
+          const std::string path = line.substr(0, equals);
+          const std::string text = line.substr(equals + 1);
+          double number = 0.0;
+          const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), number);
+          if (error != std::errc() || end != text.data() + text.size()) continue;  // a switch
+          const ConfigKey* key = Find(applied.keys, path);
+          ASSERT_NE(key, nullptr) << line << ": no reader took it";
+          EXPECT_EQ(key->value, number) << line << ": read back as " << key->value;
+          EXPECT_EQ(key->location.rfind("--set ", 0), 0u) << line << " came from " << key->location;
+        }
+      }
+    }
+  }
+  EXPECT_GT(effects, 100) << "the library offers too few effects over the rigs";
+}
+
+// At its probe, an effect moves some number the model reads; the declared config does not
+// already hold it (an effect that changes nothing could not be fitted).
+TEST(FitEffectOverrides, EveryEffectChangesTheModelAtItsProbe) {
+  for (const std::string& rig : Rigs()) {
+    SCOPED_TRACE(rig);
+    const ConfigVariants variants = testing::LoadTestVariants(rig);
+    const std::vector<ConfigKey>& declared = variants.declared().keys;
+    for (const Effect& e : EffectLibrary(variants.declared().params)) {
+      const LoadedConfig applied = variants.With(e.overrides(e.probe));
+      bool changed = false;
+      for (const ConfigKey& k : applied.keys) {
+        const ConfigKey* before = Find(declared, k.path);
+        changed |= before == nullptr || before->value != k.value;
+      }
+      EXPECT_TRUE(changed) << e.name << " at its probe leaves every number as declared";
+    }
+  }
+}
+
+// The tree the fit reads variants from is the declared config: with no overrides it gives the
+// numbers LoadConfig gives, bit for bit, user overrides included.
+TEST(FitEffectOverrides, VariantsWithoutOverridesAreTheDeclaredConfig) {
+  const std::vector<std::string> user = {"tdb.de.clearance_m=2.1e-4", "trigger.time_s=0.1"};
+  const ConfigVariants variants =
+      testing::LoadTestVariants("jarroux2019_industrial_pid.toml", user);
+  const LoadedConfig loaded =
+      LoadConfig(testing::ConfigPath("jarroux2019_industrial_pid.toml"), user);
+  const LoadedConfig again = variants.With({"tdb.de.clearance_m=2.1e-4"});
+  ASSERT_EQ(loaded.keys.size(), variants.declared().keys.size());
+  ASSERT_EQ(loaded.keys.size(), again.keys.size());
+  for (std::size_t i = 0; i < loaded.keys.size(); ++i) {
+    EXPECT_EQ(loaded.keys[i].path, again.keys[i].path);
+    EXPECT_EQ(loaded.keys[i].value, variants.declared().keys[i].value) << loaded.keys[i].path;
+    EXPECT_EQ(loaded.keys[i].value, again.keys[i].value) << loaded.keys[i].path;
+  }
+  EXPECT_EQ(variants.declared().params.tdbs.front().clearance_m, 2.1e-4);
+}
+
+TEST(FitEffectOverrides, NumbersAreWrittenToReadBackExactly) {
+  for (const double v : {0.1, 1.0, -0.0, 1e-5, 2.0 / 3.0, 1e20, -123456789.125, 5e-324}) {
+    const std::string text = OverrideNumber(v);
+    double back = 0.0;
+    std::from_chars(text.data(), text.data() + text.size(), back);
+    EXPECT_EQ(back, v) << text;
+    EXPECT_NE(text.find_first_of(".e"), std::string::npos) << text << " would read as an integer";
+  }
+  EXPECT_THROW(OverrideNumber(std::nan("")), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace ambdrop
