@@ -267,10 +267,11 @@ Truth ApplyEffect(const std::string& kind, std::uint64_t seed, Rig* rig) {
                       {p + "upper_hardening_rate_per_m", Num(r.hardening_rate_per_m)},
                       {p + "lower_hardening_N", Num(r.hardening_N)},
                       {p + "lower_hardening_rate_per_m", Num(r.hardening_rate_per_m)}};
-    t.mapping = "approximate";
+    t.mapping = "none";
     t.mapping_note =
-        "today only the 4-DOF TDB carries a Dahl ribbon (it adds race masses, a bearing and a "
-        "housing contact); the contact-law TDB's Dahl ribbon (being added) will map it directly";
+        "not today: only the 4-DOF TDB carries a Dahl ribbon, and these keys alone do not load "
+        "(the 4-DOF model also needs race masses, a bearing and a housing contact); the "
+        "contact-law TDB's Dahl ribbon (being added) will take them directly";
   } else if (kind == "race_drag") {
     TdbRig& tdb = rig->tdbs[TdbIndex(*rig, &d)];
     // 10-30 % of the friction torque that spins the race up under half the weight.

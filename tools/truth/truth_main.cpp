@@ -35,11 +35,12 @@ struct Args {
   std::string battery;
   bool si = false;
   bool list = false;
+  bool noise = true;
 };
 
 void Usage() {
   std::fputs(
-      "usage: ambdrop_truth --rig R.json --effect NAME --seed N --out DIR [--si]\n"
+      "usage: ambdrop_truth --rig R.json --effect NAME --seed N --out DIR [--si] [--no-noise]\n"
       "       ambdrop_truth --rig R.json --battery DIR [--si]\n"
       "       ambdrop_truth --list\n",
       stderr);
@@ -53,7 +54,10 @@ double MakeRecord(const Args& args, const std::string& effect, std::uint64_t see
   Rig actual = declared;
   const Truth truth = ApplyEffect(effect, seed, &actual);
   CheckRig(actual);
-  const RunResult run = RunDrop(actual, seed);
+  RunOptions options;
+  options.add_noise = args.noise;
+  if (!args.noise) actual.acquisition.sensor_quantisation_m = 0.0;
+  const RunResult run = RunDrop(actual, seed, options);
   if (!run.finite) throw std::runtime_error(effect + ": the run diverged");
   fs::create_directories(dir);
   fs::create_directories(blind_dir);
@@ -100,6 +104,8 @@ int main(int argc, char** argv) {
       args.battery = value();
     } else if (a[i] == "--si") {
       args.si = true;
+    } else if (a[i] == "--no-noise") {
+      args.noise = false;
     } else if (a[i] == "--list") {
       args.list = true;
     } else if (a[i] == "--help" || a[i] == "-h") {
