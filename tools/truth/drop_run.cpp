@@ -1,0 +1,251 @@
+#include "drop_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <numbers>
+
+#include "noise.hpp"
+#include "pid_axis.hpp"
+
+namespace ambdrop_truth {
+
+namespace {
+
+constexpr double kRpmPerRadPerS = 60.0 / (2.0 * std::numbers::pi);
+
+/// The control current that makes an AMB axis pull `force_N` at displacement u (Newton on
+/// seed 003 Eq. (2), which is quadratic in it).
+double CurrentForForce(const AmbRig& a, double force_N, double u_m) {
+  const double g0 = a.nominal_gap_m;
+  const double i0 = a.bias_current_A;
+  double i = force_N * g0 * g0 / (4.0 * a.electromagnet_constant_N_m2_per_A2 * i0);
+  for (int n = 0; n < 50; ++n) {
+    const double f = AmbAxisForce(a, i0 + i, i0 - i, u_m) - force_N;
+    const double h = 1e-6;
+    const double slope = (AmbAxisForce(a, i0 + i + h, i0 - i - h, u_m) -
+                          AmbAxisForce(a, i0 + i - h, i0 - i + h, u_m)) /
+                         (2.0 * h);
+    i -= f / slope;
+  }
+  return i;
+}
+
+long Steps(double seconds, double step_s) {
+  return std::lround(seconds / step_s);
+}
+
+double Quantised(double value, double q) {
+  return q > 0.0 ? std::round(value / q) * q : value;
+}
+
+}  // namespace
+
+double ControlCurrentLimit(const AmbRig& a) {
+  return std::min(a.bias_current_A, a.coil_current_limit_A - a.bias_current_A);
+}
+
+PlantState EquilibriumState(const Rig& rig, std::array<std::array<double, 2>, 2>* held_A) {
+  PlantState y = PlantState::Zero();
+  const double zc = rig.rotor.centre_of_mass_m;
+  // The set point: each sensor reads zero, so its plane sits at -offset/gain.
+  const double d1 = rig.sensors[0].position_m - zc;
+  const double d2 = rig.sensors[1].position_m - zc;
+  std::array<std::array<double, 2>, 2> at_sensor{};
+  for (int s = 0; s < 2; ++s) {
+    for (int axis = 0; axis < 2; ++axis) {
+      at_sensor[s][axis] = -rig.sensors[s].offset_m[axis] / rig.sensors[s].gain[axis];
+    }
+  }
+  y(kThy) = (at_sensor[0][0] - at_sensor[1][0]) / (d1 - d2);
+  y(kX) = at_sensor[0][0] - d1 * y(kThy);
+  y(kThx) = -(at_sensor[0][1] - at_sensor[1][1]) / (d1 - d2);
+  y(kY) = at_sensor[0][1] + d1 * y(kThx);
+  y(kSpin) = rig.spin_speed_rad_s;
+  for (int s = 0; s < 2; ++s) {
+    for (int axis = 0; axis < 2; ++axis) y(kLag + 2 * s + axis) = at_sensor[s][axis];
+  }
+  for (int t = 0; t < 2; ++t) {
+    // The ribbon holds the housing's weight.
+    if (rig.tdbs[t].dahl.enabled) {
+      y(kHousing + 6 * t + 5) = -rig.tdbs[t].dahl.housing_mass_kg * rig.gravity_m_s2;
+    }
+  }
+
+  // The static loads (weight, side pull) and the AMB forces that carry them: sum of forces
+  // and sum of moments about the centre of mass zero, per axis.
+  std::array<double, 2> load{rig.side_pull.force_N[0],
+                             rig.side_pull.force_N[1] - rig.rotor.mass_kg * rig.gravity_m_s2};
+  std::array<double, 2> load_moment{(rig.side_pull.position_m - zc) * rig.side_pull.force_N[0],
+                                    (rig.side_pull.position_m - zc) * rig.side_pull.force_N[1]};
+  const double a1 = rig.ambs[0].position_m - zc;
+  const double a2 = rig.ambs[1].position_m - zc;
+  Plant plant(rig);
+  for (int axis = 0; axis < 2; ++axis) {
+    const double f1 = (-load_moment[axis] + a2 * load[axis]) / (a1 - a2);
+    const double f2 = -load[axis] - f1;
+    const std::array<double, 2> force{f1, f2};
+    for (int a = 0; a < 2; ++a) {
+      const double u = plant.AtStation(y, rig.ambs[a].position_m)[axis];
+      (*held_A)[a][axis] = CurrentForForce(rig.ambs[a], force[a], u);
+    }
+  }
+  return y;
+}
+
+RunResult RunDrop(const Rig& rig, std::uint64_t seed, const RunOptions& options) {
+  const double h = rig.step_s;
+  const long total = Steps(rig.acquisition.record_length_s, h);
+  const long control_every = std::max(1L, Steps(1.0 / rig.controller.rate_Hz, h));
+  const long sample_every = std::max(1L, Steps(1.0 / rig.acquisition.sample_rate_Hz, h));
+  const long compute_delay = Steps(rig.controller.computation_delay_s, h);
+  const long lag_delay = Steps(rig.acquisition.lag_delay_s, h);
+  const long trigger = Steps(rig.acquisition.trigger_time_s, h);
+  const bool lagged = rig.acquisition.lag_time_constant_s > 0.0;
+
+  Plant plant(rig);
+  std::array<std::array<double, 2>, 2> held_A{};
+  PlantState y = EquilibriumState(rig, &held_A);
+  if (!options.start_at_equilibrium) {
+    y.head<8>().setZero();
+    y.segment<4>(kLag).setZero();
+    held_A = {};
+  }
+
+  std::array<std::array<PidAxis, 2>, 2> pid;
+  for (int a = 0; a < 2; ++a) {
+    for (int axis = 0; axis < 2; ++axis) {
+      pid[a][axis] = PidAxis(rig.controller, ControlCurrentLimit(rig.ambs[a]), held_A[a][axis]);
+    }
+  }
+  // Noise: one stream per channel, so adding a channel does not move the others.
+  std::vector<GaussianNoise> noise;
+  for (std::uint64_t stream = 0; stream < 24; ++stream) noise.emplace_back(seed, stream);
+  const auto draw = [&](int stream, double sigma) {
+    return options.add_noise && sigma > 0.0 ? sigma * noise[stream].Normal() : 0.0;
+  };
+
+  // The acquisition chain's delay: the (low-passed) sensor signal over the last lag_delay
+  // steps; before the start, the start's.
+  std::deque<std::array<std::array<double, 2>, 2>> chain;
+  std::array<std::array<double, 2>, 2> applied_A = held_A;
+  std::deque<std::pair<long, std::array<std::array<double, 2>, 2>>> pending;
+  std::array<std::array<double, 2>, 2> current_at_trigger{};
+
+  RunResult result;
+  result.rows.reserve(static_cast<std::size_t>(total / sample_every + 1));
+  PlantOutputs outputs;
+  PlantState rate;
+  PlantInput input;
+  for (long k = 0; k <= total; ++k) {
+    const double t = static_cast<double>(k) * h;
+    // The sensor signal now, and as the chain delivers it.
+    std::array<std::array<double, 2>, 2> signal{};
+    for (int s = 0; s < 2; ++s) {
+      const auto disp = plant.AtStation(y, rig.sensors[s].position_m);
+      for (int axis = 0; axis < 2; ++axis) {
+        signal[s][axis] = lagged ? y(kLag + 2 * s + axis) : disp[axis];
+      }
+    }
+    chain.push_back(signal);
+    while (static_cast<long>(chain.size()) > lag_delay + 1) chain.pop_front();
+    const auto& delivered = chain.front();
+    const auto reading = [&](int s, int axis, int stream) {
+      const SensorRig& sensor = rig.sensors[s];
+      const double v = sensor.gain[axis] * delivered[s][axis] + sensor.offset_m[axis] +
+                       draw(stream, rig.acquisition.sensor_noise_m);
+      return Quantised(v, rig.acquisition.sensor_quantisation_m);
+    };
+
+    // The controller keeps running after the power fails (its own supply); its commands reach
+    // the coils only while the amplifiers are powered.
+    while (!pending.empty() && pending.front().first <= k) {
+      applied_A = pending.front().second;
+      pending.pop_front();
+    }
+    if (k % control_every == 0) {
+      std::array<std::array<double, 2>, 2> command{};
+      for (int a = 0; a < 2; ++a) {
+        for (int axis = 0; axis < 2; ++axis) {
+          command[a][axis] = pid[a][axis].Update(reading(rig.ambs[a].sensor, axis, 2 * a + axis));
+        }
+      }
+      if (compute_delay == 0) {
+        applied_A = command;
+      } else {
+        pending.emplace_back(k + compute_delay, command);
+      }
+    }
+
+    // Coil currents: the power-loss law after the trigger.
+    const bool powered = k < trigger;
+    if (k == trigger) current_at_trigger = applied_A;
+    std::array<std::array<double, 2>, 2> coil_control{};
+    for (int a = 0; a < 2; ++a) {
+      const double i0 = rig.ambs[a].bias_current_A;
+      for (int axis = 0; axis < 2; ++axis) {
+        double scale = 1.0;
+        double control = applied_A[a][axis];
+        if (!powered) {
+          control = current_at_trigger[a][axis];
+          const double since = static_cast<double>(k - trigger) * h;
+          const PowerLossRig& p = rig.power_loss;
+          switch (p.form) {
+            case FluxDecayForm::kInstant:
+              scale = 0.0;
+              break;
+            case FluxDecayForm::kFormA:
+              scale = std::exp(-since / p.time_constant_s);
+              break;
+            case FluxDecayForm::kFormB:
+              // Force as exp(-t/tau): the currents fall at half that rate.
+              scale = since < p.hold_time_s
+                          ? 1.0
+                          : std::exp(-(since - p.hold_time_s) / (2.0 * p.time_constant_s));
+              break;
+          }
+        }
+        input.coil_A[a][axis] = {(i0 + control) * scale, (i0 - control) * scale};
+        coil_control[a][axis] = control * scale;
+      }
+    }
+    input.motor_on = powered;
+
+    if (k % sample_every == 0) {
+      plant.Derivative(y, input, &rate, &outputs);
+      RecordRow row;
+      row.t_s = t;
+      for (int s = 0; s < 2; ++s) {
+        for (int axis = 0; axis < 2; ++axis) {
+          row.displacement_m[s][axis] = reading(s, axis, 4 + 2 * s + axis);
+          row.current_A[s][axis] =
+              coil_control[s][axis] + draw(8 + 2 * s + axis, rig.acquisition.current_noise_A);
+          row.command_A[s][axis] = applied_A[s][axis];
+        }
+      }
+      for (int tdb = 0; tdb < 2; ++tdb) {
+        row.race_speed_rad_s[tdb] =
+            y(kRace + tdb) + draw(12 + tdb, rig.acquisition.speed_noise_rpm / kRpmPerRadPerS);
+        row.normal_force_N[tdb] =
+            outputs.tdb[tdb].normal_N + draw(15 + tdb, rig.acquisition.force_noise_N);
+        // The load cell under the housing reads the contact's reaction (its tare removed).
+        row.support_force_N[tdb][0] =
+            -outputs.tdb[tdb].fx_N + draw(17 + 2 * tdb, rig.acquisition.force_noise_N);
+        row.support_force_N[tdb][1] =
+            -outputs.tdb[tdb].fy_N + draw(18 + 2 * tdb, rig.acquisition.force_noise_N);
+      }
+      row.rotor_speed_rad_s = y(kSpin) + draw(14, rig.acquisition.speed_noise_rpm / kRpmPerRadPerS);
+      result.rows.push_back(row);
+    }
+    if (k == total) break;
+    plant.Step(&y, input);
+    if (options.on_step) options.on_step(t + h, y);
+    if (!y.allFinite()) {
+      result.finite = false;
+      break;
+    }
+  }
+  return result;
+}
+
+}  // namespace ambdrop_truth

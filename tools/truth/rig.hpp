@@ -1,0 +1,150 @@
+#pragma once
+// The rig the truth generator simulates: a rigid rotor on two differential current-biased AMB
+// axes pairs, read by two displacement-sensor planes (not colocated with the AMBs), held by a
+// PID per axis, dropped onto two contact-law TDBs. Every number in SI; the hidden effects of
+// effects.hpp are fields here too (absent from a rig file: their defaults are "no effect").
+// Frame: z along the rotor from the non-drive end, y vertical up, x horizontal.
+#include <array>
+#include <string>
+
+namespace ambdrop_truth {
+
+struct RotorRig {
+  double mass_kg = 0.0;
+  double transverse_inertia_kg_m2 = 0.0;  ///< about the centre of mass
+  double polar_inertia_kg_m2 = 0.0;
+  double centre_of_mass_m = 0.0;  ///< station of the centre of mass (m)
+};
+
+/// One AMB plane, two axes (x, y), each a pair of opposed electromagnets with a bias current.
+struct AmbRig {
+  std::string name;
+  double position_m = 0.0;
+  double electromagnet_constant_N_m2_per_A2 = 0.0;  ///< k of f = k (I/g)^2 per coil
+  double nominal_gap_m = 0.0;
+  double bias_current_A = 0.0;
+  double coil_current_limit_A = 0.0;  ///< each coil's current stays in [0, limit]
+  int sensor = 0;                     ///< index of the sensor plane its PID reads
+};
+
+/// A displacement-sensor plane. gain and offset are the sensor's errors (1 and 0 when true).
+struct SensorRig {
+  std::string name;
+  double position_m = 0.0;
+  std::array<double, 2> gain{1.0, 1.0};
+  std::array<double, 2> offset_m{0.0, 0.0};
+};
+
+/// A PID per AMB axis (seed 003's structure, kp + ki/s + kd s/(1 + tau_d s)), run at rate_Hz,
+/// its command applied computation_delay_s after the sample it was computed from.
+struct ControllerRig {
+  double rate_Hz = 0.0;
+  double computation_delay_s = 0.0;
+  double sensor_gain_V_per_m = 0.0;
+  double amplifier_gain_A_per_V = 0.0;
+  double kp = 0.0;
+  double ki_per_s = 0.0;
+  double kd_s = 0.0;
+  double derivative_filter_s = 0.0;
+};
+
+enum class ContactLaw { kLinear, kHuntCrossley };
+
+/// A massless ribbon under the TDB's housing with the generalized Dahl law (Jarroux 2019
+/// Eq. (1)-(3)); the housing then has a mass and moves on it.
+struct DahlRibbonRig {
+  bool enabled = false;
+  double housing_mass_kg = 0.3;
+  double slipping_threshold_N = 0.0;  ///< muFN
+  double slipping_stiffness_N_per_m = 0.0;
+  double beta_per_m = 0.0;
+  double hardening_N = 0.0;           ///< a = c
+  double hardening_rate_per_m = 0.0;  ///< b = d
+};
+
+struct TdbRig {
+  std::string name;
+  double position_m = 0.0;
+  double journal_radius_m = 0.0;
+  double clearance_m = 0.0;
+  double inner_race_radius_m = 0.0;  ///< 0 in a rig file: taken as the journal radius
+  ContactLaw contact_law = ContactLaw::kLinear;
+  double contact_stiffness = 0.0;  ///< N/m (linear) or N/m^n (Hunt-Crossley)
+  double contact_damping = 0.0;    ///< N s/m (linear) or alpha, s/m (Hunt-Crossley)
+  double contact_exponent = 1.0;   ///< n (Hunt-Crossley)
+  double friction_coefficient = 0.0;
+  double slip_regularisation_m_s = 0.0;  ///< v0 of tanh(v / v0)
+  double race_inertia_kg_m2 = 0.0;
+  double race_viscous_drag_N_m_s = 0.0;
+  double race_drag_torque_N_m = 0.0;
+  std::array<double, 2> misalignment_m{0.0, 0.0};  ///< TDB centre off the magnetic centre
+  DahlRibbonRig dahl;
+};
+
+/// What the acquisition records and how: its rate and length, the trigger, and its noise.
+struct AcquisitionRig {
+  double sample_rate_Hz = 0.0;
+  double record_length_s = 0.0;
+  double trigger_time_s = 0.0;
+  double sensor_noise_m = 0.0;         ///< sigma
+  double sensor_quantisation_m = 0.0;  ///< 0: none
+  double current_noise_A = 0.0;
+  double speed_noise_rpm = 0.0;
+  double force_noise_N = 0.0;
+  /// A lag of the whole acquisition chain, the same on every sensor axis: a first-order
+  /// low-pass then a pure delay (both 0: none). The controller reads through it too.
+  double lag_time_constant_s = 0.0;
+  double lag_delay_s = 0.0;
+};
+
+/// How the AMB forces go when the power fails. kInstant: at once. kFormA: bias and control
+/// flux fade together, currents as exp(-t/tau), force as exp(-2t/tau). kFormB: the currents
+/// (and so the force law) are held for hold_time_s, then the force falls as exp(-t/tau).
+enum class FluxDecayForm { kInstant, kFormA, kFormB };
+struct PowerLossRig {
+  FluxDecayForm form = FluxDecayForm::kInstant;
+  double time_constant_s = 0.0;
+  double hold_time_s = 0.0;
+};
+
+/// Unbalance: a static one at the centre of mass and a couple (equal and opposite masses in
+/// two planes), each as mass x eccentricity (kg m) and phase (rad).
+struct UnbalanceRig {
+  double static_kg_m = 0.0;
+  double static_phase_rad = 0.0;
+  double couple_kg_m = 0.0;
+  double couple_phase_rad = 0.0;
+  std::array<double, 2> couple_planes_m{0.0, 0.0};
+};
+
+/// A constant force on the rotor at a station that stays after power loss (e.g. the unbalanced
+/// magnetic pull of a permanent-magnet motor whose rotor sits off its stator's centre).
+struct SidePullRig {
+  std::array<double, 2> force_N{0.0, 0.0};
+  double position_m = 0.0;
+};
+
+struct Rig {
+  std::string name;
+  double spin_speed_rad_s = 0.0;
+  double gravity_m_s2 = 9.81;
+  double step_s = 1e-6;  ///< the generator's own integration step
+  RotorRig rotor;
+  std::array<AmbRig, 2> ambs;
+  std::array<SensorRig, 2> sensors;
+  ControllerRig controller;
+  std::array<TdbRig, 2> tdbs;
+  AcquisitionRig acquisition;
+  PowerLossRig power_loss;
+  UnbalanceRig unbalance;
+  SidePullRig side_pull;
+};
+
+/// Reads a rig file (JSON; tools/truth/rigs/*.json shows the schema); throws
+/// std::runtime_error naming the key on a missing or malformed value.
+Rig ReadRig(const std::string& path);
+
+/// Checks the numbers are physical (positive masses, gaps, rates ...); throws naming the key.
+void CheckRig(const Rig& rig);
+
+}  // namespace ambdrop_truth

@@ -1,0 +1,166 @@
+// ambdrop_truth: an independent truth generator for `ambdrop fit` (issue 15, item 2). It shares
+// no code with ambdrop's physics, I/O or controller; see tools/truth/README.md.
+//
+//   ambdrop_truth --rig R.json --effect NAME --seed N --out DIR [--si]
+//   ambdrop_truth --rig R.json --battery DIR [--si]
+//   ambdrop_truth --list
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "drop_run.hpp"
+#include "effects.hpp"
+#include "noise.hpp"
+#include "record_files.hpp"
+#include "rig.hpp"
+
+namespace fs = std::filesystem;
+using namespace ambdrop_truth;
+
+namespace {
+
+constexpr int kBadCommandLine = 64;
+
+struct Args {
+  std::string rig;
+  std::string effect;
+  std::uint64_t seed = 1;
+  std::string out;
+  std::string battery;
+  bool si = false;
+  bool list = false;
+  bool noise = true;
+};
+
+void Usage() {
+  std::fputs(
+      "usage: ambdrop_truth --rig R.json --effect NAME --seed N --out DIR [--si] [--no-noise]\n"
+      "       ambdrop_truth --rig R.json --battery DIR [--si]\n"
+      "       ambdrop_truth --list\n",
+      stderr);
+}
+
+/// Makes one record in `dir`, and its blind copy in `blind_dir`; returns the seconds taken.
+double MakeRecord(const Args& args, const std::string& effect, std::uint64_t seed,
+                  const fs::path& dir, const fs::path& blind_dir) {
+  const auto start = std::chrono::steady_clock::now();
+  const Rig declared = ReadRig(args.rig);
+  Rig actual = declared;
+  const Truth truth = ApplyEffect(effect, seed, &actual);
+  CheckRig(actual);
+  RunOptions options;
+  options.add_noise = args.noise;
+  if (!args.noise) actual.acquisition.sensor_quantisation_m = 0.0;
+  const RunResult run = RunDrop(actual, seed, options);
+  if (!run.finite) throw std::runtime_error(effect + ": the run diverged");
+  fs::create_directories(dir);
+  fs::create_directories(blind_dir);
+  for (const fs::path& d : {dir, blind_dir}) {
+    WriteRecordCsv(d / "record.csv", declared, run, CsvUnits::kAcquisition);
+    if (args.si) WriteRecordCsv(d / "record_si.csv", declared, run, CsvUnits::kSi);
+    fs::copy_file(args.rig, d / "declared.json", fs::copy_options::overwrite_existing);
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  WriteTruthJson(dir / "truth.json", truth, seed, args.rig, seconds);
+  fmt::print("{:<24} seed {:<4} {:6.2f} s  {}\n", effect, seed, seconds, truth.description);
+  return seconds;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args args;
+  const std::vector<std::string> a(argv + 1, argv + argc);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const auto value = [&]() -> std::string {
+      if (i + 1 >= a.size()) {
+        fmt::print(stderr, "{} needs a value\n", a[i]);
+        std::exit(kBadCommandLine);
+      }
+      return a[++i];
+    };
+    if (a[i] == "--rig") {
+      args.rig = value();
+    } else if (a[i] == "--effect") {
+      args.effect = value();
+    } else if (a[i] == "--seed") {
+      const std::string v = value();
+      try {
+        args.seed = std::stoull(v);
+      } catch (const std::exception&) {
+        fmt::print(stderr, "--seed: expected a non-negative integer, found '{}'\n", v);
+        return kBadCommandLine;
+      }
+    } else if (a[i] == "--out") {
+      args.out = value();
+    } else if (a[i] == "--battery") {
+      args.battery = value();
+    } else if (a[i] == "--si") {
+      args.si = true;
+    } else if (a[i] == "--no-noise") {
+      args.noise = false;
+    } else if (a[i] == "--list") {
+      args.list = true;
+    } else if (a[i] == "--help" || a[i] == "-h") {
+      Usage();
+      return 0;
+    } else {
+      fmt::print(stderr, "unknown argument '{}'\n", a[i]);
+      Usage();
+      return kBadCommandLine;
+    }
+  }
+  if (args.list) {
+    for (const std::string& k : EffectKinds()) fmt::print("{}\n", k);
+    return 0;
+  }
+  if (args.rig.empty() || (args.battery.empty() == (args.effect.empty() || args.out.empty()))) {
+    Usage();
+    return kBadCommandLine;
+  }
+  try {
+    if (args.battery.empty()) {
+      const fs::path dir(args.out);
+      MakeRecord(args, args.effect, args.seed, dir, dir / "blind");
+      return 0;
+    }
+    // The battery: every kind once, the clean record twice; blind copies under names that do
+    // not give the effect away, and battery.json to map them back.
+    const fs::path root(args.battery);
+    std::vector<std::pair<std::string, std::uint64_t>> plan;
+    std::uint64_t seed = 1;
+    for (const std::string& kind : EffectKinds()) {
+      plan.emplace_back(kind, seed++);
+      if (kind == "clean") plan.emplace_back(kind, seed++);
+    }
+    std::string index = "[\n";
+    double total_s = 0.0;
+    for (std::size_t i = 0; i < plan.size(); ++i) {
+      std::uint64_t h = plan[i].second * 0x9e3779b97f4a7c15ULL + i;
+      const std::string blind = fmt::format("record_{:06x}", SplitMix64(&h) & 0xffffff);
+      const std::string name = fmt::format("{:02}_{}_s{}", i, plan[i].first, plan[i].second);
+      total_s +=
+          MakeRecord(args, plan[i].first, plan[i].second, root / name, root / "blind" / blind);
+      index += fmt::format("  {{\"record\": \"{}\", \"blind\": \"blind/{}\"}}{}\n", name, blind,
+                           i + 1 < plan.size() ? "," : "");
+    }
+    index += "]\n";
+    std::FILE* f = std::fopen((root / "battery.json").c_str(), "w");
+    if (f == nullptr) throw std::runtime_error((root / "battery.json").string() + ": cannot write");
+    std::fputs(index.c_str(), f);
+    std::fclose(f);
+    fmt::print("{} records in {:.1f} s ({:.2f} s each)\n", plan.size(), total_s,
+               total_s / static_cast<double>(plan.size()));
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "ambdrop_truth: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}
