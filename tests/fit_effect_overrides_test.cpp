@@ -58,7 +58,7 @@ TEST(FitEffectOverrides, EveryLineIsReadBackExactlyOnEveryRig) {
   for (const std::string& rig : Rigs()) {
     SCOPED_TRACE(rig);
     const ConfigVariants variants = testing::LoadTestVariants(rig);
-    for (const Effect& e : EffectLibrary(variants.declared().params)) {
+    for (const Effect& e : EffectLibrary(variants.declared())) {
       SCOPED_TRACE(e.name);
       ++effects;
       for (const std::vector<double>& values : Corners(e)) {
@@ -97,7 +97,7 @@ TEST(FitEffectOverrides, EveryEffectChangesTheModelAtItsProbe) {
     SCOPED_TRACE(rig);
     const ConfigVariants variants = testing::LoadTestVariants(rig);
     const std::vector<ConfigKey>& declared = variants.declared().keys;
-    for (const Effect& e : EffectLibrary(variants.declared().params)) {
+    for (const Effect& e : EffectLibrary(variants.declared())) {
       const LoadedConfig applied = variants.With(e.overrides(e.probe));
       bool changed = false;
       for (const ConfigKey& k : applied.keys) {

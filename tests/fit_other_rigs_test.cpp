@@ -59,7 +59,7 @@ Fitted Fit(const Rig& rig, const std::vector<std::string>& effect,
   const ModelParams& declared = variants.declared().params;
   const RecordCost cost(declared, made.measurement, made.record, RecordRunOptions{});
   std::vector<Effect> library;
-  for (Effect& e : EffectLibrary(declared)) {
+  for (Effect& e : EffectLibrary(variants.declared())) {
     if (std::find(offered.begin(), offered.end(), e.name) != offered.end()) {
       library.push_back(std::move(e));
     }
@@ -147,9 +147,9 @@ TEST(FitOtherRigs, CatcherBearingRigFindsTheMisalignedTdb) {
 // Each TDB model's own friction law takes the coefficient; the catcher bearing's races turn on
 // its bearings' moments alone, so a drag torque (a [spin] key) is not offered there.
 TEST(FitOtherRigs, TheLibraryOffersWhatEachTdbModelUses) {
-  const auto names = [](const ModelParams& p) {
+  const auto names = [](const ConfigVariants& p) {
     std::vector<std::string> n;
-    for (const Effect& e : EffectLibrary(p)) n.push_back(e.name);
+    for (const Effect& e : EffectLibrary(p.declared())) n.push_back(e.name);
     return n;
   };
   const auto has = [](const std::vector<std::string>& n, const char* name) {
@@ -157,10 +157,10 @@ TEST(FitOtherRigs, TheLibraryOffersWhatEachTdbModelUses) {
   };
   const ConfigVariants variants = testing::LoadTestVariants(kFlexible.config);
   const ModelParams& flexible = variants.declared().params;
-  const std::vector<std::string> on_balls = names(flexible);
+  const std::vector<std::string> on_balls = names(variants);
   EXPECT_TRUE(has(on_balls, "friction_coefficient"));
   EXPECT_TRUE(has(on_balls, "tdb_drag_torque:front"));
-  for (const Effect& e : EffectLibrary(flexible)) {
+  for (const Effect& e : EffectLibrary(variants.declared())) {
     if (e.name != "friction_coefficient") continue;
     const ModelParams p = WithEffects(variants, {&e}, {{0.2}});
     for (std::size_t i = 0; i < p.tdbs.size(); ++i) {
@@ -176,13 +176,13 @@ TEST(FitOtherRigs, TheLibraryOffersWhatEachTdbModelUses) {
               set.end());
   }
 
-  const std::vector<std::string> catcher = names(testing::LoadTestConfig(kCatcher.config));
+  const std::vector<std::string> catcher = names(testing::LoadTestVariants(kCatcher.config));
   EXPECT_TRUE(has(catcher, "friction_coefficient"));
   EXPECT_FALSE(has(catcher, "tdb_drag_torque:left"));
   EXPECT_FALSE(has(catcher, "tdb_drag_torque:right"));
 
   // A frictionless law takes no coefficient.
-  const std::vector<std::string> frictionless = names(testing::LoadTestConfig(
+  const std::vector<std::string> frictionless = names(testing::LoadTestVariants(
       kFlexible.config, {"tdb.front.ball_bearing_tdb.friction.law=\"none\"",
                          "tdb.rear.ball_bearing_tdb.friction.law=\"none\""}));
   EXPECT_FALSE(has(frictionless, "friction_coefficient"));

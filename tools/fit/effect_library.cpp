@@ -9,6 +9,7 @@
 
 #include "io/config_variants.hpp"
 #include "rt_core/limits.hpp"
+#include "tools/fit/key_effects.hpp"
 
 namespace ambdrop {
 namespace {
@@ -73,6 +74,15 @@ bool HasDragTorque(const TdbParams& t) {
   return t.spin.enabled && t.model != TdbModelKind::kCatcherBearing;
 }
 
+// Start values without repeats, in order (a declared value first).
+std::vector<double> Distinct(std::initializer_list<double> values) {
+  std::vector<double> out;
+  for (const double v : values) {
+    if (std::find(out.begin(), out.end(), v) == out.end()) out.push_back(v);
+  }
+  return out;
+}
+
 double SmallestClearance(const ModelParams& p) {
   double c = 1e-3;
   for (const TdbParams& t : p.tdbs) c = std::min(c, t.clearance_m);
@@ -86,8 +96,16 @@ Effect TdbMisalignment(const TdbParams& t) {
   e.name = "tdb_misalignment:" + name;
   e.family = "tdb_misalignment";
   e.description = fmt::format("TDB {} centre offset from the magnetic centre (x, y)", name);
-  e.parameters = {{"x_m", -0.8 * c, 0.8 * c, {0.0, 0.3 * c, -0.3 * c}},
-                  {"y_m", -0.8 * c, 0.8 * c, {0.0, 0.3 * c, -0.3 * c}}};
+  // Declared or not, the search starts at what is declared (0 when off).
+  const MisalignmentParams& m = t.misalignment;
+  const double x0 = m.enabled ? m.x_m : 0.0, y0 = m.enabled ? m.y_m : 0.0;
+  e.parameters = {{"x_m", -0.8 * c, 0.8 * c, Distinct({x0, 0.0, 0.3 * c, -0.3 * c})},
+                  {"y_m", -0.8 * c, 0.8 * c, Distinct({y0, 0.0, 0.3 * c, -0.3 * c})}};
+  if (m.enabled) {
+    e.description = fmt::format(
+        "TDB {} centre offset from the magnetic centre (x, y; declared {:.4g}, {:.4g} m)", name,
+        m.x_m, m.y_m);
+  }
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
   e.probe = {0.5 * c, -0.5 * c};
   const std::string table = "tdb." + name + ".misalignment.";
@@ -230,12 +248,18 @@ Effect CoupleUnbalance(const ModelParams& declared) {
 }
 
 // The force of the given AMBs fading after power loss, with one time constant.
-Effect FluxDecayOf(std::vector<std::string> ambs, std::string name, std::string description) {
+Effect FluxDecayOf(std::vector<std::string> ambs, std::string name, std::string description,
+                   double declared_tau_s = 0.0) {
   Effect e;
   e.name = std::move(name);
   e.family = "amb_flux_decay";
   e.description = std::move(description);
-  e.parameters = {{"time_constant_s", 1e-4, 0.1, {1e-4, 2e-3, 1e-2}}};
+  std::vector<double> starts = {1e-4, 2e-3, 1e-2};
+  if (declared_tau_s >= 1e-4 && declared_tau_s <= 0.1) {
+    starts = Distinct({declared_tau_s, 0.5 * declared_tau_s, 2.0 * declared_tau_s, 2e-3});
+    std::erase_if(starts, [](double t) { return t < 1e-4 || t > 0.1; });
+  }
+  e.parameters = {{"time_constant_s", 1e-4, 0.1, starts}};
   e.revealed_by = {Q::kDisplacement, Q::kCurrent, Q::kTdbNormalForce};
   e.probe = {2e-2};  // long: the declared model's loss is instant
   e.overrides = [ambs](const std::vector<double>& v) {
@@ -249,18 +273,34 @@ Effect FluxDecayOf(std::vector<std::string> ambs, std::string name, std::string 
   return e;
 }
 
+// The declared decay's time constant (the first declared one), 0 if none is declared.
+double DeclaredTau(const std::vector<AmbParams>& ambs) {
+  for (const AmbParams& a : ambs) {
+    if (a.flux_decay.enabled) return a.flux_decay.time_constant_s;
+  }
+  return 0.0;
+}
+
 Effect FluxDecay(const ModelParams& declared) {
   std::vector<std::string> ambs;
   for (const AmbParams& a : declared.ambs) ambs.push_back(a.name);
+  const double tau = DeclaredTau(declared.ambs);
   return FluxDecayOf(std::move(ambs), "amb_flux_decay",
-                     "AMB force fading after power loss, exp(-2t/tau) (every AMB)");
+                     tau > 0.0 ? fmt::format("AMB force fading after power loss, time constant "
+                                             "refitted (every AMB; declared {:.4g} s)",
+                                             tau)
+                               : "AMB force fading after power loss, exp(-2t/tau) (every AMB)",
+                     tau);
 }
 
 // The force of one AMB alone fading: each AMB has its own coils and amplifier.
 Effect FluxDecayAt(const AmbParams& a) {
+  const double tau = a.flux_decay.enabled ? a.flux_decay.time_constant_s : 0.0;
   return FluxDecayOf(
       {a.name}, "amb_flux_decay:" + a.name,
-      fmt::format("AMB {}'s force alone fading after power loss, exp(-2t/tau)", a.name));
+      tau > 0.0 ? fmt::format("AMB {}'s decay time constant alone (declared {:.4g} s)", a.name, tau)
+                : fmt::format("AMB {}'s force alone fading after power loss, exp(-2t/tau)", a.name),
+      tau);
 }
 
 // One harmonic of a sensor's synchronous runout: 1X, an eccentric target; 2X, an oval one
@@ -274,8 +314,15 @@ Effect SensorRunoutHarmonic(const SensorParams& s, double clearance, int order) 
   e.description = order == 1
                       ? fmt::format("synchronous (1X) runout of sensor {}", name)
                       : fmt::format("synchronous 2X runout (oval target) of sensor {}", name);
-  e.parameters = {{"amplitude_" + x + "_m", 0.0, 0.3 * clearance, {0.0, 0.02 * clearance}},
-                  {"phase_" + x + "_rad", -kPi, kPi, {0.0, 0.5 * kPi, kPi, -0.5 * kPi}, true}};
+  // A declared harmonic is refitted from its declared amplitude and phase.
+  const SensorRunoutParams& r = s.runout;
+  const double a0 = r.enabled ? (order == 1 ? r.amplitude_1x_m : r.amplitude_2x_m) : 0.0;
+  const double p0 = r.enabled ? (order == 1 ? r.phase_1x_rad : r.phase_2x_rad) : 0.0;
+  e.parameters = {
+      {"amplitude_" + x + "_m", 0.0, std::max(0.3 * clearance, 2.0 * a0),
+       Distinct({a0, 0.0, 0.02 * clearance})},
+      {"phase_" + x + "_rad", -kPi, kPi, Distinct({p0, 0.0, 0.5 * kPi, kPi, -0.5 * kPi}), true}};
+  if (a0 > 0.0) e.description += fmt::format(" (declared {:.4g} m)", a0);
   e.revealed_by = {Q::kDisplacement};
   e.probe = {0.1 * clearance, 0.0};
   const std::string table = "sensor." + name + ".runout.";
@@ -319,8 +366,18 @@ Effect SensorLag(const SensorParams& s, double sample_s) {
   // The delay is whole samples of the sensor (controller_if/sensor_emulator.cpp), at most what
   // its ring holds: a rig without a controller samples at every step.
   const double longest = std::min(1e-3, (kMaxSensorDelaySamples - 1) * sample_s);
-  e.parameters = {{"delay_s", 0.0, longest, {0.0, 2 * sample_s, 5 * sample_s}, false, sample_s},
-                  {"filter_time_constant_s", 0.0, 1e-3, {0.0, 2e-4, 0.0}}};
+  // A declared lag is refitted from its declared delay and filter.
+  const double d0 = s.lag.enabled ? std::min(s.lag.delay_s, longest) : 0.0;
+  const double tau0 = s.lag.enabled && s.lag.cutoff_Hz > 0.0
+                          ? std::min(1.0 / (2 * kPi * s.lag.cutoff_Hz), 1e-3)
+                          : 0.0;
+  e.parameters = {
+      {"delay_s", 0.0, longest, Distinct({d0, 0.0, 2 * sample_s, 5 * sample_s}), false, sample_s},
+      {"filter_time_constant_s", 0.0, 1e-3,
+       s.lag.enabled ? Distinct({tau0, 0.0, 2e-4}) : std::vector<double>{0.0, 2e-4, 0.0}}};
+  if (s.lag.enabled) {
+    e.description += fmt::format(" (declared {:.4g} s, {:.4g} Hz)", s.lag.delay_s, s.lag.cutoff_Hz);
+  }
   e.revealed_by = {Q::kDisplacement};
   // At the delay's bound: a lag shows only weakly in a drop.
   e.probe = {std::floor(longest / sample_s) * sample_s, 5e-4};
@@ -411,14 +468,75 @@ Effect RibbonCrossCoupling(const TdbParams& t) {
   return e;
 }
 
+// The registry's entry for a key, or (a table the config leaves out, so no reader logged it) one
+// made from the value in force, with the reader's lower bound.
+ConfigKey KeyOr(const std::vector<ConfigKey>& keys, const std::string& path, double value,
+                bool zero_allowed) {
+  if (const ConfigKey* k = FindKey(keys, path)) return *k;
+  ConfigKey k;
+  k.path = path;
+  k.unit = KeyUnit(path.substr(path.rfind('.') + 1));
+  k.key_class = ClassOfKey(path);
+  k.value = value;
+  k.declared = false;
+  k.lower = 0.0;
+  k.lower_inclusive = zero_allowed;
+  return k;
+}
+
+// The races' spin laws that a record's race speeds (and the journal's slip) reveal: the inertia
+// and the viscous damping of each race (Jarroux 2019 Eq. (9): Ieq Omega' + Phi Omega = ...),
+// per TDB and, where there are several, every race's together (one supplier, one grease).
+// Their drag torque alone is hand-made (TdbDrag): a size from 0 with its own nudge.
+void AddRaceSpinEffects(const LoadedConfig& config, std::vector<Effect>* effects) {
+  const ModelParams& declared = config.params;
+  std::vector<ConfigKey> inertias, dampings, drags;
+  const std::vector<Q> spin_shows = {Q::kTdbSpeed, Q::kDisplacement, Q::kRotorSpeed};
+  for (const TdbParams& t : declared.tdbs) {
+    if (!HasDragTorque(t)) continue;
+    const std::string table = "tdb." + t.name + ".spin.";
+    inertias.push_back(KeyOr(config.keys, table + "inertia_kg_m2", t.spin.inertia_kg_m2, false));
+    dampings.push_back(KeyOr(config.keys, table + "rotational_damping_N_m_s",
+                             t.spin.rotational_damping_N_m_s, true));
+    drags.push_back(KeyOr(config.keys, table + "drag_torque_N_m", t.spin.drag_torque_N_m, true));
+    effects->push_back(DeclaredValueOff(
+        inertias.back(),
+        {"tdb_race_inertia:" + t.name, "tdb_race_inertia",
+         fmt::format("polar inertia of TDB {}'s inner race (declared {:.4g} kg m^2)", t.name,
+                     t.spin.inertia_kg_m2),
+         spin_shows}));
+    effects->push_back(DeclaredValueOff(
+        dampings.back(),
+        {"tdb_race_damping:" + t.name, "tdb_race_damping",
+         fmt::format("viscous damping of TDB {}'s inner race spin (declared {:.4g} N m s)", t.name,
+                     t.spin.rotational_damping_N_m_s),
+         spin_shows}));
+  }
+  if (inertias.size() < 2) return;
+  effects->push_back(DeclaredValuesTogether(
+      inertias, {"tdb_race_inertia", "tdb_race_inertia",
+                 "polar inertia of every TDB's inner race, scaled together", spin_shows}));
+  effects->push_back(DeclaredValuesTogether(
+      dampings, {"tdb_race_damping", "tdb_race_damping",
+                 "viscous damping of every TDB's inner race spin, together", spin_shows}));
+  Effect drag = DeclaredValuesTogether(
+      drags, {"tdb_drag_torque", "tdb_drag_torque",
+              "drag torque on every TDB's inner race, together (seals, windage)", spin_shows});
+  if (drag.parameters.front().name != "scale") {
+    // None declared: the per-TDB drag's range and starts, a size from 0 over decades.
+    drag.parameters = {{"drag_torque_N_m", 0.0, 5.0, {0.0, 0.05, 0.5}, false, 0.0, true}};
+    drag.probe = {2.0};
+  }
+  effects->push_back(std::move(drag));
+}
+
 }  // namespace
 
-std::vector<Effect> EffectLibrary(const ModelParams& declared) {
+std::vector<Effect> EffectLibrary(const LoadedConfig& config) {
+  const ModelParams& declared = config.params;
   std::vector<Effect> effects;
   const double clearance = SmallestClearance(declared);
-  for (const TdbParams& t : declared.tdbs) {
-    if (!t.misalignment.enabled) effects.push_back(TdbMisalignment(t));
-  }
+  for (const TdbParams& t : declared.tdbs) effects.push_back(TdbMisalignment(t));
   for (const TdbParams& t : declared.tdbs) effects.push_back(TdbClearance(t));
   if (std::any_of(declared.tdbs.begin(), declared.tdbs.end(), HasFriction)) {
     effects.push_back(FrictionCoefficient(declared));
@@ -436,9 +554,8 @@ std::vector<Effect> EffectLibrary(const ModelParams& declared) {
   if (hi > lo && declared.unbalances.size() + 3 <= static_cast<std::size_t>(kMaxUnbalances)) {
     effects.push_back(CoupleUnbalance(declared));
   }
-  const bool decays = std::any_of(declared.ambs.begin(), declared.ambs.end(),
-                                  [](const AmbParams& a) { return a.flux_decay.enabled; });
-  if (!declared.ambs.empty() && !decays) {
+  // Declared or not (issue 23: a declared decay at the wrong time constant must be refitted).
+  if (!declared.ambs.empty()) {
     effects.push_back(FluxDecay(declared));
     if (declared.ambs.size() > 1) {
       for (const AmbParams& a : declared.ambs) effects.push_back(FluxDecayAt(a));
@@ -449,16 +566,15 @@ std::vector<Effect> EffectLibrary(const ModelParams& declared) {
                                      ? declared.simulation.step_s
                                      : 1.0 / declared.controller.rate_Hz;
   for (const SensorParams& s : declared.sensors) {
-    if (!s.runout.enabled) effects.push_back(SensorRunoutHarmonic(s, clearance, 1));
-    if (!s.runout.enabled || s.runout.amplitude_2x_m == 0.0) {
-      effects.push_back(SensorRunoutHarmonic(s, clearance, 2));
-    }
+    effects.push_back(SensorRunoutHarmonic(s, clearance, 1));
+    effects.push_back(SensorRunoutHarmonic(s, clearance, 2));
     effects.push_back(SensorGainOffset(s, clearance));
-    if (!s.lag.enabled) effects.push_back(SensorLag(s, sensor_sample_s));
+    effects.push_back(SensorLag(s, sensor_sample_s));
   }
   for (const TdbParams& t : declared.tdbs) {
     if (HasDragTorque(t)) effects.push_back(TdbDrag(t));
   }
+  AddRaceSpinEffects(config, &effects);
   // Ribbon laws apply to 4-DOF TDBs whose ribbon is declared Kelvin-Voigt.
   for (const TdbParams& t : declared.tdbs) {
     if (t.model != TdbModelKind::kFourDof || t.four_dof.ribbon != RibbonLaw::kKelvinVoigt) continue;

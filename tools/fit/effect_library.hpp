@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "io/config_loader.hpp"
 #include "io/config_measurement.hpp"
 #include "rt_core/model_params.hpp"
 
@@ -47,9 +48,9 @@ struct Effect {
   std::function<std::vector<std::string>(const std::vector<double>&)> overrides;
 };
 
-/// Every effect that applies to this rig and that the declared config does not already have
-/// switched on, in a fixed order (the order candidates are reported in).
-std::vector<Effect> EffectLibrary(const ModelParams& declared);
+/// Every effect that applies to this rig, in a fixed order (the order candidates are reported
+/// in). The config's key registry gives the ranges of the "declared value is off" effects.
+std::vector<Effect> EffectLibrary(const LoadedConfig& declared);
 
 /// Effects whose revealing quantities no channel of the record measures.
 bool Decidable(const Effect& effect, const MeasurementParams& measurement);
