@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -44,8 +45,8 @@ TdbParams Series(ContactLawRibbon ribbon) {
 // Advances the TDB's states by explicit Euler under a prescribed journal motion; returns the
 // last evaluation's forces.
 template <class Journal>
-TdbForce Run(const ContactLawTdb& tdb, std::vector<double>* state, double t0, double t1, double dt,
-             Journal journal, double* work_J = nullptr) {
+TdbForce Advance(const ContactLawTdb& tdb, std::vector<double>* state, double t0, double t1,
+                 double dt, Journal journal, double* work_J = nullptr) {
   std::vector<double> rate(state->size());
   TdbForce f;
   const int steps = static_cast<int>(std::lround((t1 - t0) / dt));
@@ -79,7 +80,7 @@ TEST(ContactLawRibbon, DahlStaticLoadSettlesAtTheSeriesDeflection) {
   const double d = 60e-6;
   std::vector<double> state(tdb.StateSize());
   tdb.InitialState(state.data());
-  const TdbForce f = Run(tdb, &state, 0.0, 0.03, 5e-7, [&](double) {
+  const TdbForce f = Advance(tdb, &state, 0.0, 0.03, 5e-7, [&](double) {
     return JournalMotion{0.0, -(kClearance + d), 0.0, 0.0, 0.0};
   });
   // kbrg (d - u) = hu(u) by bisection: the left side falls, the right side rises with u.
@@ -119,11 +120,11 @@ TEST(ContactLawRibbon, DahlLoadUnloadCycleDissipates) {
   };
   std::vector<double> state(tdb.StateSize());
   tdb.InitialState(state.data());
-  Run(tdb, &state, 0.0, period, 5e-7, journal);  // the first cycle leaves the ribbon set
+  Advance(tdb, &state, 0.0, period, 5e-7, journal);  // the first cycle leaves the ribbon set
   double work = 0.0, u_min = 1.0, u_max = -1.0;
   for (int slice = 0; slice < 40; ++slice) {
     const double t0 = period * (1.0 + slice / 40.0);
-    Run(tdb, &state, t0, t0 + period / 40.0, 5e-7, journal, &work);
+    Advance(tdb, &state, t0, t0 + period / 40.0, 5e-7, journal, &work);
     u_min = std::min(u_min, -state[ContactLawTdb::kRibbonY]);
     u_max = std::max(u_max, -state[ContactLawTdb::kRibbonY]);
   }
@@ -147,7 +148,7 @@ double MeanWhirlForce(double eta, double w) {
   std::vector<double> state(tdb.StateSize());
   tdb.InitialState(state.data());
   const double period = 2.0 * std::numbers::pi / std::abs(w), dt = 1e-6;
-  Run(tdb, &state, 0.0, 2.0 * period, dt, journal);
+  Advance(tdb, &state, 0.0, 2.0 * period, dt, journal);
   std::vector<double> rate(state.size());
   double sum = 0.0;
   const int steps = static_cast<int>(period / dt);
@@ -194,6 +195,13 @@ TEST(ContactLawRibbon, WhirlDampingOnEveryRibbon) {
   }
 }
 
+const TdbParams& Nde(const ModelParams& params) {
+  for (const TdbParams& t : params.tdbs) {
+    if (t.name == "nde") return t;
+  }
+  throw std::out_of_range("no TDB nde");
+}
+
 std::string ErrorOf(const std::vector<std::string>& overrides) {
   try {
     LoadConfig(testing::ConfigPath("jarroux2019_industrial.toml"), overrides);
@@ -215,20 +223,19 @@ const std::vector<std::string> kDahlKeys = {
 
 TEST(ConfigContactLawRibbon, BilinearByDefaultAndTheSwitchReadsItsTable) {
   const ModelParams shipped = testing::LoadTestConfig("jarroux2019_industrial.toml");
-  EXPECT_EQ(shipped.tdbs[0].contact_law.ribbon, ContactLawRibbon::kBilinear);
+  EXPECT_EQ(Nde(shipped).contact_law.ribbon, ContactLawRibbon::kBilinear);
   const ContactLawParams dahl =
-      testing::LoadTestConfig("jarroux2019_industrial.toml", kDahlKeys).tdbs[0].contact_law;
+      Nde(testing::LoadTestConfig("jarroux2019_industrial.toml", kDahlKeys)).contact_law;
   EXPECT_EQ(dahl.ribbon, ContactLawRibbon::kDahl);
   EXPECT_EQ(dahl.dahl.beta_per_m, 1e7);
   EXPECT_EQ(dahl.dahl.threshold_scale, 1.0);
   EXPECT_EQ(dahl.ribbon_damping_N_s_per_m, 7e3);  // ceq, beside the Dahl element
   const ContactLawParams cc =
-      testing::LoadTestConfig("jarroux2019_industrial.toml",
-                              {"tdb.nde.contact_law.ribbon=\"cross_coupled\"",
-                               "tdb.nde.contact_law.cross_coupled.stiffness_N_per_m=5e6",
-                               "tdb.nde.contact_law.cross_coupled.cross_coupling=0.3",
-                               "tdb.nde.contact_law.cross_coupled.damping_N_s_per_m=2e3"})
-          .tdbs[0]
+      Nde(testing::LoadTestConfig("jarroux2019_industrial.toml",
+                                  {"tdb.nde.contact_law.ribbon=\"cross_coupled\"",
+                                   "tdb.nde.contact_law.cross_coupled.stiffness_N_per_m=5e6",
+                                   "tdb.nde.contact_law.cross_coupled.cross_coupling=0.3",
+                                   "tdb.nde.contact_law.cross_coupled.damping_N_s_per_m=2e3"}))
           .contact_law;
   EXPECT_EQ(cc.ribbon, ContactLawRibbon::kCrossCoupled);
   EXPECT_EQ(cc.cross_coupled.cross_coupling, 0.3);

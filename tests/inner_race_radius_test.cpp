@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -23,13 +24,20 @@ using ::testing::HasSubstr;
 
 struct Rig {
   const char* file;
-  const char* tdb;  ///< the first TDB of the file
+  const char* tdb;
 };
 // One config per TDB kind: contact law, 4-DOF, ball bearing (seed 002), catcher bearing.
 const std::vector<Rig> kRigs = {{"jarroux2019_industrial.toml", "nde"},
                                 {"jarroux2019_industrial_model2.toml", "nde"},
                                 {"chen_itri_flexible.toml", "front"},
                                 {"sdcb_rigid.toml", "left"}};
+
+const TdbParams& Named(const ModelParams& params, const std::string& name) {
+  for (const TdbParams& t : params.tdbs) {
+    if (t.name == name) return t;
+  }
+  throw std::out_of_range("no TDB " + name);
+}
 
 std::string ErrorOf(const std::string& file, const std::vector<std::string>& overrides) {
   try {
@@ -50,11 +58,11 @@ TEST(InnerRaceRadius, AbsentIsJournalRadiusPlusClearanceBitForBit) {
 
 TEST(InnerRaceRadius, ReadOnEveryKind) {
   for (const Rig& rig : kRigs) {
-    const TdbParams base = testing::LoadTestConfig(rig.file).tdbs[0];
+    const TdbParams base = Named(testing::LoadTestConfig(rig.file), rig.tdb);
     const std::string key = std::string("tdb.") + rig.tdb + ".inner_race_radius_m";
-    const TdbParams p =
-        testing::LoadTestConfig(rig.file, {key + "=" + std::to_string(base.journal_radius_m)})
-            .tdbs[0];
+    const TdbParams p = Named(
+        testing::LoadTestConfig(rig.file, {key + "=" + std::to_string(base.journal_radius_m)}),
+        rig.tdb);
     EXPECT_EQ(InnerRaceRadius(p), base.journal_radius_m) << rig.file;
   }
 }
