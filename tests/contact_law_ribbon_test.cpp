@@ -7,12 +7,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "io/config_loader.hpp"
+#include "malloc_guard.hpp"
 #include "rt_core/contact_law_tdb.hpp"
 #include "rt_core/ribbon_dahl.hpp"
 #include "test_configs.hpp"
@@ -200,6 +202,39 @@ const TdbParams& Nde(const ModelParams& params) {
     if (t.name == "nde") return t;
   }
   throw std::out_of_range("no TDB nde");
+}
+
+// The step stays allocation-free and deterministic with either ribbon in series.
+TEST(ContactLawRibbon, StepAllocationFreeAndBitIdentical) {
+  for (ContactLawRibbon ribbon : {ContactLawRibbon::kDahl, ContactLawRibbon::kCrossCoupled}) {
+    TdbParams p = Series(ribbon);
+    p.friction.law = FrictionLaw::kRegularisedCoulomb;
+    p.friction.whirl_damping_N_s_per_m = 500.0;
+    const ContactLawTdb tdb(p);
+    const auto journal = [](double t) {
+      const double r = kClearance + 30e-6, w = 300.0;
+      return JournalMotion{r * std::cos(w * t), r * std::sin(w * t), -r * w * std::sin(w * t),
+                           r * w * std::cos(w * t), 600.0};
+    };
+    std::vector<double> a(tdb.StateSize()), b(tdb.StateSize());
+    tdb.InitialState(a.data());
+    tdb.InitialState(b.data());
+    std::vector<double> rate(a.size());
+    {
+      testing::MallocGuard guard;
+      TdbForce f;
+      for (int i = 0; i < 5000; ++i) {
+        tdb.Evaluate(journal(i * 1e-6), a.data(), rate.data(), &f);
+        for (std::size_t k = 0; k < a.size(); ++k) a[k] += 1e-6 * rate[k];
+      }
+      if (testing::MallocGuard::Available()) {
+        EXPECT_EQ(guard.allocations(), 0);
+      }
+    }
+    Advance(tdb, &b, 0.0, 5000 * 1e-6, 1e-6, journal);
+    EXPECT_GT(std::abs(a[ContactLawTdb::kRaceSpin]), 0.0);  // the contact happened
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), sizeof(double) * a.size()), 0);
+  }
 }
 
 std::string ErrorOf(const std::vector<std::string>& overrides) {
