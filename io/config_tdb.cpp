@@ -9,19 +9,6 @@
 namespace ambdrop::config_detail {
 namespace {
 
-ContactLawParams ReadContactLaw(const TableReader& tdb) {
-  const TableReader table = tdb.Table("contact_law");
-  table.AllowOnly({"bearing_stiffness_N_per_m", "bearing_damping_N_s_per_m",
-                   "ribbon_stiffness_N_per_m", "ribbon_damping_N_s_per_m", "ribbon_crushing_m"});
-  ContactLawParams params;
-  params.bearing_stiffness_N_per_m = table.Number("bearing_stiffness_N_per_m", Positive());
-  params.bearing_damping_N_s_per_m = table.Number("bearing_damping_N_s_per_m", NonNegative());
-  params.ribbon_stiffness_N_per_m = table.Number("ribbon_stiffness_N_per_m", Positive());
-  params.ribbon_damping_N_s_per_m = table.Number("ribbon_damping_N_s_per_m", NonNegative());
-  params.ribbon_crushing_m = table.Number("ribbon_crushing_m", NonNegative());
-  return params;
-}
-
 HuntCrossleyParams ReadHuntCrossley(const TableReader& four_dof, std::string_view key) {
   const TableReader table = four_dof.Table(key);
   table.AllowOnly({"stiffness_N_per_m_n", "exponent", "damping_s_per_m"});
@@ -89,6 +76,63 @@ CrossCoupledRibbonParams ReadCrossCoupled(const TableReader& table) {
   params.damping_N_s_per_m = table.Number("damping_N_s_per_m", NonNegative());
   params.sign_regularisation_s_per_m =
       table.Number("sign_regularisation_s_per_m", Positive(), params.sign_regularisation_s_per_m);
+  return params;
+}
+
+// Jarroux 2019 Eq. (12); with `ribbon` = "dahl" or "cross_coupled" a ribbon law in series with
+// the bearing (ContactLawTdb), read by the 4-DOF TDB's ribbon readers from the table of that
+// name. As there, the selected ribbon's table is required and the other one checked if given.
+ContactLawParams ReadContactLaw(const TableReader& tdb) {
+  const TableReader table = tdb.Table("contact_law");
+  table.AllowOnly({"bearing_stiffness_N_per_m", "bearing_damping_N_s_per_m",
+                   "ribbon_stiffness_N_per_m", "ribbon_damping_N_s_per_m", "ribbon_crushing_m",
+                   "ribbon", "dahl", "cross_coupled"});
+  ContactLawParams params;
+  const std::string ribbon =
+      table.Choice("ribbon", {"bilinear", "dahl", "cross_coupled"}, "bilinear");
+  params.ribbon = ribbon == "dahl"            ? ContactLawRibbon::kDahl
+                  : ribbon == "cross_coupled" ? ContactLawRibbon::kCrossCoupled
+                                              : ContactLawRibbon::kBilinear;
+  const bool bilinear = params.ribbon == ContactLawRibbon::kBilinear;
+  params.bearing_stiffness_N_per_m = table.Number("bearing_stiffness_N_per_m", Positive());
+  params.bearing_damping_N_s_per_m = table.Number("bearing_damping_N_s_per_m", NonNegative());
+  if (bilinear) {
+    params.ribbon_stiffness_N_per_m = table.Number("ribbon_stiffness_N_per_m", Positive());
+    params.ribbon_damping_N_s_per_m = table.Number("ribbon_damping_N_s_per_m", NonNegative());
+    params.ribbon_crushing_m = table.Number("ribbon_crushing_m", NonNegative());
+  } else {
+    // The ribbon law replaces keq and urd (and, cross-coupled, ceq): given, they are checked,
+    // absent, they are not logged as keys a fit could move.
+    params.ribbon_stiffness_N_per_m =
+        table.OptionalNumber("ribbon_stiffness_N_per_m", Positive()).value_or(0.0);
+    params.ribbon_crushing_m =
+        table.OptionalNumber("ribbon_crushing_m", NonNegative()).value_or(0.0);
+    if (params.ribbon == ContactLawRibbon::kDahl) {
+      const NumberRule positive_damping{
+          .lower = 0.0,
+          .lower_inclusive = false,
+          .what =
+              "a positive number (the Dahl ribbon's race is massless: this damping beside "
+              "the Dahl element sets its deflection rate)"};
+      params.ribbon_damping_N_s_per_m = table.Number("ribbon_damping_N_s_per_m", positive_damping);
+    } else {
+      params.ribbon_damping_N_s_per_m =
+          table.OptionalNumber("ribbon_damping_N_s_per_m", NonNegative()).value_or(0.0);
+    }
+  }
+  const auto ribbon_table = [&](std::string_view key) {
+    return ribbon == key ? std::optional<TableReader>(table.Table(key)) : table.OptionalTable(key);
+  };
+  if (const auto dahl = ribbon_table("dahl")) params.dahl = ReadDahl(*dahl);
+  if (const auto cc = ribbon_table("cross_coupled")) {
+    params.cross_coupled = ReadCrossCoupled(*cc);
+    if (params.ribbon == ContactLawRibbon::kCrossCoupled &&
+        !(params.cross_coupled.damping_N_s_per_m > 0.0)) {
+      cc->Fail("damping_N_s_per_m",
+               "a positive number (N s/m) (in series with the contact the ribbon's race is "
+               "massless: its damping sets the deflection rate)");
+    }
+  }
   return params;
 }
 
@@ -176,14 +220,22 @@ MisalignmentParams ReadMisalignment(const TableReader& tdb) {
 
 TdbParams ReadTdb(const std::string& name, const TableReader& table, const AxialRange& position,
                   const GravityParams& gravity) {
-  table.AllowOnly({"position_m", "journal_radius_m", "clearance_m", "model", "contact_law",
-                   "friction", "spin", "misalignment", "four_dof", "ball_bearing_tdb",
-                   "catcher_bearing"});
+  table.AllowOnly({"position_m", "journal_radius_m", "clearance_m", "inner_race_radius_m", "model",
+                   "contact_law", "friction", "spin", "misalignment", "four_dof",
+                   "ball_bearing_tdb", "catcher_bearing"});
   TdbParams tdb;
   tdb.name = name;
   tdb.position_m = ReadAxialPosition(table, position);
   tdb.journal_radius_m = table.Number("journal_radius_m", Positive());
   tdb.clearance_m = table.Number("clearance_m", Positive());
+  // Rir of the slip and race torque. The race bore surrounds the journal, so it cannot be smaller
+  // than the journal radius. Absent: 0, derived (journal radius + clearance, InnerRaceRadius), so
+  // that it follows a clearance changed later, as it did before the key.
+  tdb.inner_race_radius_m = table.Number(
+      "inner_race_radius_m",
+      AtLeast(tdb.journal_radius_m,
+              "a radius at least journal_radius_m (the race bore surrounds the journal)"),
+      0.0);
   // The selected model's table is required; the other, if given, is checked too, so that
   // `--set tdb.X.model=...` can switch between two complete descriptions.
   const std::string model = table.Choice(

@@ -116,7 +116,7 @@ void CatcherBearingTdb::Evaluate(const JournalMotion& j, const double* s, double
   double normal = 0.0;
   double friction = 0.0;
   double on_rotor_x = 0.0, on_rotor_y = 0.0;
-  const double inner_race_radius = p.journal_radius_m + p.clearance_m;  // Rb
+  const double inner_race_radius = InnerRaceRadius(p);  // Rb
   if (penetration > 0.0) {
     // Seed 003, Eq. (1)
     normal = ImpactForce(c.impact, penetration, g.radial_speed_m_s);

@@ -2,15 +2,94 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <stdexcept>
 
+#include "rt_core/ribbon_cross_coupled.hpp"
+#include "rt_core/ribbon_dahl.hpp"
 #include "rt_core/tdb_common.hpp"
 
 namespace ambdrop {
+namespace {
 
-ContactLawTdb::ContactLawTdb(const TdbParams& params) : TouchdownBearing(params) {}
+int StatesOf(ContactLawRibbon ribbon) {
+  switch (ribbon) {
+    case ContactLawRibbon::kDahl:
+      return ContactLawTdb::kStatesDahl;
+    case ContactLawRibbon::kCrossCoupled:
+      return ContactLawTdb::kStatesCrossCoupled;
+    case ContactLawRibbon::kBilinear:
+      break;
+  }
+  return ContactLawTdb::kStatesBilinear;
+}
+
+// The massless race's balance c u' + R = F (see ContactLawTdb) for a ribbon force R without its
+// damping: the deflection rate u', the normal force and the friction force on the race.
+struct SeriesSolution {
+  double vx_m_s = 0.0, vy_m_s = 0.0;
+  double normal_N = 0.0;
+  double friction_N = 0.0;
+};
+
+SeriesSolution SolveSeries(const TdbParams& p, const JournalMotion& j, const ContactGeometry& g,
+                           double race_speed_rad_s, double ribbon_x_N, double ribbon_y_N,
+                           double damping_N_s_per_m) noexcept {
+  const ContactLawParams& c = p.contact_law;
+  const double tx = -g.ny, ty = g.nx;
+  const double ribbon_n = ribbon_x_N * g.nx + ribbon_y_N * g.ny;
+  const double ribbon_t = ribbon_x_N * tx + ribbon_y_N * ty;
+  const double delta = g.radius_m - p.clearance_m;
+  SeriesSolution s;
+  double rate_n = 0.0;
+  if (delta > 0.0) {
+    // Jarroux 2019 Eq. (12), crushed branch, on the bearing's deflection; (c + cbrg) u'_n =
+    // kbrg delta + cbrg v_j·n - R·n.
+    rate_n = (c.bearing_stiffness_N_per_m * delta +
+              c.bearing_damping_N_s_per_m * g.radial_speed_m_s - ribbon_n) /
+             (damping_N_s_per_m + c.bearing_damping_N_s_per_m);
+    s.normal_N = c.bearing_stiffness_N_per_m * delta +
+                 c.bearing_damping_N_s_per_m * (g.radial_speed_m_s - rate_n);
+  }
+  double on_race_t = 0.0;
+  if (s.normal_N > 0.0) {
+    // Jarroux 2019 Eq. (11), plus the viscous force on the whirl speed.
+    s.friction_N = FrictionForce(p.friction, s.normal_N, SurfaceSlip(p, j, g, race_speed_rad_s));
+    on_race_t = s.friction_N + p.friction.whirl_damping_N_s_per_m * g.whirl_speed_m_s;
+  } else {
+    // A receding contact cannot pull: the ribbon relaxes through its own damping.
+    s.normal_N = 0.0;
+    rate_n = -ribbon_n / damping_N_s_per_m;
+  }
+  const double rate_t = (on_race_t - ribbon_t) / damping_N_s_per_m;
+  s.vx_m_s = rate_n * g.nx + rate_t * tx;
+  s.vy_m_s = rate_n * g.ny + rate_t * ty;
+  return s;
+}
+
+}  // namespace
+
+ContactLawTdb::ContactLawTdb(const TdbParams& params)
+    : TouchdownBearing(params), state_size_(StatesOf(params.contact_law.ribbon)) {
+  const ContactLawParams& c = params.contact_law;
+  if ((c.ribbon == ContactLawRibbon::kDahl && !(c.ribbon_damping_N_s_per_m > 0.0)) ||
+      (c.ribbon == ContactLawRibbon::kCrossCoupled && !(c.cross_coupled.damping_N_s_per_m > 0.0))) {
+    throw std::invalid_argument("tdb '" + params.name +
+                                "': a ribbon in series with the contact needs a positive damping "
+                                "(its race is massless)");
+  }
+}
+
+void ContactLawTdb::InitialState(double* state) const noexcept {
+  std::fill(state, state + state_size_, 0.0);
+}
 
 void ContactLawTdb::Evaluate(const JournalMotion& j, const double* state, double* state_rate,
                              TdbForce* out) const noexcept {
+  if (params_.contact_law.ribbon != ContactLawRibbon::kBilinear) {
+    EvaluateInSeries(j, state, state_rate, out);
+    return;
+  }
   const TdbParams& p = params_;
   const ContactLawParams& c = p.contact_law;
   const double race_speed = state[0];
@@ -44,6 +123,60 @@ void ContactLawTdb::Evaluate(const JournalMotion& j, const double* state, double
   out->normal_force_N = normal;
   out->tangential_force_N = friction;
   state_rate[0] = RaceAcceleration(p, race_speed, friction, normal);
+}
+
+void ContactLawTdb::EvaluateInSeries(const JournalMotion& j, const double* s, double* rate,
+                                     TdbForce* out) const noexcept {
+  const TdbParams& p = params_;
+  const ContactLawParams& c = p.contact_law;
+  const double race_speed = s[kRaceSpin];
+  const double ux = s[kRibbonX], uy = s[kRibbonY];
+  // The race's lateral speed is left out of the contact's speeds (class comment).
+  const ContactGeometry g = JournalGeometry(p, j, {ux, uy, 0.0, 0.0});
+
+  double ribbon_x = 0.0, ribbon_y = 0.0, damping = 0.0;
+  SeriesSolution solution;
+  if (c.ribbon == ContactLawRibbon::kDahl) {
+    // Jarroux 2019 Eq. (1)-(3): the Dahl force is a state, beside the viscous ceq.
+    ribbon_x = s[kRibbonFx];
+    ribbon_y = s[kRibbonFy];
+    damping = c.ribbon_damping_N_s_per_m;
+    solution = SolveSeries(p, j, g, race_speed, ribbon_x, ribbon_y, damping);
+    rate[kRibbonFx] = DahlRibbonForceRate(c.dahl, ux, solution.vx_m_s, ribbon_x);
+    rate[kRibbonFy] = DahlRibbonForceRate(c.dahl, uy, solution.vy_m_s, ribbon_y);
+  } else {
+    // Jarroux 2016 (seed 001) Eq. (1); the sign of the race whirl from a solve without the
+    // cross-coupling.
+    const CrossCoupledRibbonParams& r = c.cross_coupled;
+    damping = r.damping_N_s_per_m;
+    const SeriesSolution direct = SolveSeries(p, j, g, race_speed, r.stiffness_N_per_m * ux,
+                                              r.stiffness_N_per_m * uy, damping);
+    const double whirl = WhirlSpeed(ux, uy, direct.vx_m_s, direct.vy_m_s);
+    // Jarroux 2016 (seed 001), Eq. (1): sign as an arctan law.
+    const double eta_s = r.cross_coupling * (2.0 / std::numbers::pi) *
+                         std::atan(r.sign_regularisation_s_per_m * whirl);
+    ribbon_x = r.stiffness_N_per_m * (ux - eta_s * uy);
+    ribbon_y = r.stiffness_N_per_m * (eta_s * ux + uy);
+    solution = SolveSeries(p, j, g, race_speed, ribbon_x, ribbon_y, damping);
+  }
+  rate[kRibbonX] = solution.vx_m_s;
+  rate[kRibbonY] = solution.vy_m_s;
+
+  *out = TdbForce{};
+  out->penetration_m = g.radius_m - p.clearance_m;
+  out->tdb_spin_rad_s = race_speed;
+  out->normal_force_N = solution.normal_N;
+  out->tangential_force_N = solution.friction_N;
+  if (solution.normal_N > 0.0) {
+    ForceOnRotor(g, solution.normal_N,
+                 -solution.friction_N - p.friction.whirl_damping_N_s_per_m * g.whirl_speed_m_s,
+                 &out->fx_N, &out->fy_N);
+    out->torque_on_rotor_N_m = -solution.friction_N * p.journal_radius_m;
+  }
+  // The housing takes the ribbon's force, which the massless race makes equal to the contact's.
+  out->support_x_N = ribbon_x + damping * solution.vx_m_s;
+  out->support_y_N = ribbon_y + damping * solution.vy_m_s;
+  rate[kRaceSpin] = RaceAcceleration(p, race_speed, solution.friction_N, solution.normal_N);
 }
 
 }  // namespace ambdrop

@@ -23,6 +23,12 @@ struct ContactGeometry {
   double whirl_speed_m_s = 0.0;   ///< relative speed along t = (-ny, nx), the +spin sense
 };
 
+/// Rir in use: the declared inner_race_radius_m, or journal radius + clearance when it is 0 (the
+/// same sum as before the key, so the same bits).
+inline double InnerRaceRadius(const TdbParams& p) noexcept {
+  return p.inner_race_radius_m > 0.0 ? p.inner_race_radius_m : p.journal_radius_m + p.clearance_m;
+}
+
 inline ContactGeometry JournalGeometry(const TdbParams& p, const JournalMotion& j,
                                        const RaceMotion& race = {}) noexcept {
   ContactGeometry g;
@@ -51,7 +57,7 @@ inline ContactGeometry JournalGeometry(const TdbParams& p, const JournalMotion& 
 /// Eq. (11), Chen 2019 (seed 002) Eq. (9)-(10): the relative whirl plus the surface speeds.
 inline double SurfaceSlip(const TdbParams& p, const JournalMotion& j, const ContactGeometry& g,
                           double race_speed_rad_s) noexcept {
-  const double inner_race_radius_m = p.journal_radius_m + p.clearance_m;
+  const double inner_race_radius_m = InnerRaceRadius(p);
   return g.whirl_speed_m_s + j.spin_rad_s * p.journal_radius_m -
          race_speed_rad_s * inner_race_radius_m;
 }
@@ -61,7 +67,7 @@ inline double SurfaceSlip(const TdbParams& p, const JournalMotion& j, const Cont
 /// does not call it: its sum keeps its order, and every run its bits.)
 inline double SpinSurfaceSlip(const TdbParams& p, const JournalMotion& j,
                               double race_speed_rad_s) noexcept {
-  const double inner_race_radius_m = p.journal_radius_m + p.clearance_m;
+  const double inner_race_radius_m = InnerRaceRadius(p);
   return j.spin_rad_s * p.journal_radius_m - race_speed_rad_s * inner_race_radius_m;
 }
 
@@ -95,7 +101,7 @@ inline double FrictionForce(const FrictionParams& f, double normal_force_N,
 inline double RaceAcceleration(const TdbParams& p, double race_speed_rad_s, double friction_N,
                                double normal_force_N) noexcept {
   if (!p.spin.enabled) return 0.0;
-  const double inner_race_radius_m = p.journal_radius_m + p.clearance_m;
+  const double inner_race_radius_m = InnerRaceRadius(p);
   double resisting = 0.0;
   if (p.spin.drag_regularisation_s_per_rad > 0.0) {
     resisting = p.spin.palmgren_f1 * normal_force_N * p.spin.pitch_diameter_m;

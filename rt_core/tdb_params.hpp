@@ -7,14 +7,26 @@
 
 namespace ambdrop {
 
+/// The ribbon of the contact-law TDB (see ContactLawTdb).
+enum class ContactLawRibbon {
+  kBilinear,      ///< inside the bilinear law, Jarroux 2019 Eq. (12) (the default)
+  kDahl,          ///< massless race on a generalized Dahl ribbon, Jarroux 2019 Eq. (1)-(3)
+  kCrossCoupled,  ///< massless race on the cross-coupled ribbon, Jarroux 2016 (seed 001) Eq. (1)
+};
+
 /// Contact-law TDB, Jarroux 2019 Eq. (12): ribbon (keq, ceq) until crushed by urd, then the ball
-/// bearing (kbrg, cbrg) in series with the crushed ribbon's static force keq*urd.
+/// bearing (kbrg, cbrg) in series with the crushed ribbon's static force keq*urd. With a Dahl or
+/// cross-coupled ribbon the bearing (kbrg, cbrg) is in series with that ribbon instead.
 struct ContactLawParams {
   double bearing_stiffness_N_per_m = 0.0;  ///< kbrg
   double bearing_damping_N_s_per_m = 0.0;  ///< cbrg
-  double ribbon_stiffness_N_per_m = 0.0;   ///< keq (ribbon and bearing in series)
-  double ribbon_damping_N_s_per_m = 0.0;   ///< ceq
-  double ribbon_crushing_m = 0.0;          ///< urd, ribbon crushing capacity
+  double ribbon_stiffness_N_per_m = 0.0;   ///< keq (ribbon and bearing in series); bilinear only
+  /// ceq; with the Dahl ribbon, the viscous part beside the Dahl element (> 0)
+  double ribbon_damping_N_s_per_m = 0.0;
+  double ribbon_crushing_m = 0.0;  ///< urd, ribbon crushing capacity; bilinear only
+  ContactLawRibbon ribbon = ContactLawRibbon::kBilinear;
+  DahlRibbonParams dahl;                   ///< ribbon = kDahl
+  CrossCoupledRibbonParams cross_coupled;  ///< ribbon = kCrossCoupled (its damping > 0)
 };
 
 enum class FrictionLaw {
@@ -63,6 +75,11 @@ struct TdbParams {
   double position_m = 0.0;
   double journal_radius_m = 0.0;  ///< rotor radius at the TDB
   double clearance_m = 0.0;       ///< radial clearance rotor / inner race
+  /// Rir, the inner race's rolling radius in the slip, the race torque and the regularisation of
+  /// its resisting torques; 0 (a TdbParams built in code): journal_radius_m + clearance_m, which
+  /// is also the config's default. Contact geometry (penetration, Hertz radii) keeps clearance_m:
+  /// this radius only says which surface speed the race has, a convention simulators differ on.
+  double inner_race_radius_m = 0.0;
   TdbModelKind model = TdbModelKind::kContactLaw;
   ContactLawParams contact_law;
   FourDofParams four_dof;

@@ -806,7 +806,7 @@ std::vector<RuleCase> TdbCases() {
       {"TdbUnknownKey", Full("clearance_m = 2e-4", "clearence_m = 2e-4"), "clearence_m",
        "tdb.de.clearence_m",
        "unknown key 'tdb.de.clearence_m' (allowed here: position_m, journal_radius_m, "
-       "clearance_m, model, contact_law, friction, spin, misalignment, "
+       "clearance_m, inner_race_radius_m, model, contact_law, friction, spin, misalignment, "
        "four_dof, ball_bearing_tdb, catcher_bearing)"},
       {"TdbContactLawMissing",
        Full("[tdb.de.contact_law]\nbearing_stiffness_N_per_m = 1e8\nbearing_damping_N_s_per_m = "

@@ -26,7 +26,7 @@ ModelParams DropRig() {
     t.position_m = z;
     t.journal_radius_m = 0.04;
     t.clearance_m = 0.2e-3;
-    t.contact_law = {2e8, 2e3, 5e6, 7e3, 0.05e-3};
+    t.contact_law = {2e8, 2e3, 5e6, 7e3, 0.05e-3, ContactLawRibbon::kBilinear, {}, {}};
     p.tdbs.push_back(t);
   }
   return p;

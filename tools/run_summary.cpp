@@ -3,6 +3,8 @@
 #include <cmath>
 #include <vector>
 
+#include "rt_core/tdb_common.hpp"
+
 namespace ambdrop {
 
 RunSummary::RunSummary(const ModelParams& params)
@@ -17,7 +19,7 @@ RunSummary::RunSummary(const ModelParams& params)
     }
     geometry.clearance_m = tdb.clearance_m;
     geometry.journal_radius_m = tdb.journal_radius_m;
-    geometry.race_radius_m = tdb.journal_radius_m + tdb.clearance_m;
+    geometry.race_radius_m = InnerRaceRadius(tdb);
     geometry_.push_back(geometry);
     TdbSummary summary;
     summary.name = tdb.name;

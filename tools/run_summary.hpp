@@ -55,7 +55,7 @@ class RunSummary {
     double centre_y_m = 0.0;
     double clearance_m = 0.0;
     double journal_radius_m = 0.0;
-    double race_radius_m = 0.0;  ///< inner-race surface, journal radius + clearance
+    double race_radius_m = 0.0;  ///< inner-race surface radius, InnerRaceRadius
   };
 
   std::vector<TdbGeometry> geometry_;
