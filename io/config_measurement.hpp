@@ -69,11 +69,11 @@ struct MeasurementChannel {
   int axis = -1;   ///< 0 = x, 1 = y for quantities with an axis; -1 otherwise
   /// SI per record unit: the column is multiplied by it when read (1 for SI columns).
   double scale = 1.0;
-  std::string unit;  ///< the `unit` spelling it came from; empty for SI or a given `scale`
+  std::string unit{};  ///< the `unit` spelling it came from; empty for SI or a given `scale`
   ChannelWindow window = ChannelWindow::kAll;
   /// Compared only at record times t with trigger + from_s <= t < trigger + to_s.
-  std::optional<double> from_s;
-  std::optional<double> to_s;
+  std::optional<double> from_s{};
+  std::optional<double> to_s{};
 
   std::string Describe(const ModelParams& params) const;  ///< "displacement de x"
   /// Whether record time `t_s` lies inside the channel's window for a trigger at `trigger_s`.
