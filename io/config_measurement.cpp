@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <cmath>
+#include <numbers>
 #include <string_view>
 #include <utility>
 
@@ -15,10 +17,12 @@ using config_detail::NonNegative;
 using config_detail::NumberRule;
 using config_detail::TableReader;
 
-constexpr std::array<std::pair<std::string_view, MeasuredQuantity>, 5> kQuantities = {{
+constexpr std::array<std::pair<std::string_view, MeasuredQuantity>, 7> kQuantities = {{
     {"displacement", MeasuredQuantity::kDisplacement},
     {"current", MeasuredQuantity::kCurrent},
+    {"controller_command", MeasuredQuantity::kControllerCommand},
     {"tdb_normal_force", MeasuredQuantity::kTdbNormalForce},
+    {"tdb_support_force", MeasuredQuantity::kTdbSupportForce},
     {"tdb_speed", MeasuredQuantity::kTdbSpeed},
     {"rotor_speed", MeasuredQuantity::kRotorSpeed},
 }};
@@ -27,14 +31,107 @@ bool TakesSensor(MeasuredQuantity q) {
   return q == MeasuredQuantity::kDisplacement;
 }
 bool TakesAmb(MeasuredQuantity q) {
-  return q == MeasuredQuantity::kCurrent;
+  return q == MeasuredQuantity::kCurrent || q == MeasuredQuantity::kControllerCommand;
 }
 bool TakesTdb(MeasuredQuantity q) {
-  return q == MeasuredQuantity::kTdbNormalForce || q == MeasuredQuantity::kTdbSpeed;
+  return q == MeasuredQuantity::kTdbNormalForce || q == MeasuredQuantity::kTdbSpeed ||
+         q == MeasuredQuantity::kTdbSupportForce;
 }
 bool TakesAxis(MeasuredQuantity q) {
-  return q == MeasuredQuantity::kDisplacement || q == MeasuredQuantity::kCurrent;
+  return q == MeasuredQuantity::kDisplacement || q == MeasuredQuantity::kCurrent ||
+         q == MeasuredQuantity::kControllerCommand || q == MeasuredQuantity::kTdbSupportForce;
 }
+
+/// "current and controller_command": the quantities that take a key, for messages.
+template <typename Predicate>
+std::string QuantitiesThat(Predicate takes) {
+  std::vector<std::string_view> names;
+  for (const auto& [name, q] : kQuantities) {
+    if (takes(q)) names.push_back(name);
+  }
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) out += i + 1 == names.size() ? " and " : ", ";
+    out += names[i];
+  }
+  return out;
+}
+
+std::string TakeVerb(std::size_t count) {
+  return count == 1 ? "takes" : "take";
+}
+
+enum class Dimension { kLength, kCurrent, kForce, kSpeed };
+
+Dimension DimensionOf(MeasuredQuantity q) {
+  switch (q) {
+    case MeasuredQuantity::kDisplacement:
+      return Dimension::kLength;
+    case MeasuredQuantity::kCurrent:
+    case MeasuredQuantity::kControllerCommand:
+      return Dimension::kCurrent;
+    case MeasuredQuantity::kTdbNormalForce:
+    case MeasuredQuantity::kTdbSupportForce:
+      return Dimension::kForce;
+    case MeasuredQuantity::kTdbSpeed:
+    case MeasuredQuantity::kRotorSpeed:
+      break;
+  }
+  return Dimension::kSpeed;
+}
+
+struct UnitSpelling {
+  std::string_view name;
+  Dimension dimension;
+  double si_per_unit;
+};
+
+// A small fixed table: what loggers and rig sheets write. A spelling outside it is an error,
+// never a guess.
+constexpr double kRevolution_rad = 2.0 * std::numbers::pi;
+constexpr std::array<UnitSpelling, 12> kUnits = {{
+    {"m", Dimension::kLength, 1.0},
+    {"mm", Dimension::kLength, 1e-3},
+    {"um", Dimension::kLength, 1e-6},
+    {"\xC2\xB5m", Dimension::kLength, 1e-6},  // µm in UTF-8
+    {"A", Dimension::kCurrent, 1.0},
+    {"mA", Dimension::kCurrent, 1e-3},
+    {"N", Dimension::kForce, 1.0},
+    {"kN", Dimension::kForce, 1e3},
+    {"rad/s", Dimension::kSpeed, 1.0},
+    {"rpm", Dimension::kSpeed, kRevolution_rad / 60.0},
+    {"Hz", Dimension::kSpeed, kRevolution_rad},
+    {"rev/s", Dimension::kSpeed, kRevolution_rad},
+}};
+
+std::string_view DimensionName(Dimension d) {
+  switch (d) {
+    case Dimension::kLength:
+      return "length";
+    case Dimension::kCurrent:
+      return "current";
+    case Dimension::kForce:
+      return "force";
+    case Dimension::kSpeed:
+      break;
+  }
+  return "speed";
+}
+
+std::string SpellingsOf(Dimension d) {
+  std::string out;
+  for (const UnitSpelling& u : kUnits) {
+    if (u.dimension != d) continue;
+    out += fmt::format("{}{:?}", out.empty() ? "" : ", ", u.name);
+  }
+  return out;
+}
+
+constexpr std::array<std::pair<std::string_view, double>, 3> kTimeUnits = {{
+    {"s", 1.0},
+    {"ms", 1e-3},
+    {"us", 1e-6},
+}};
 
 /// The index of the component `key` names, in the model's order.
 template <typename Component>
@@ -56,28 +153,91 @@ int ReadComponent(const TableReader& t, std::string_view key, const std::vector<
 
 // A misplaced name is usually a copy-paste slip between channels, so the message says which
 // quantity the key belongs to rather than only that it is unknown here.
+void RejectForeignKey(const TableReader& t, MeasuredQuantity q, std::string_view key,
+                      bool (*takes)(MeasuredQuantity)) {
+  if (takes(q)) return;
+  std::size_t count = 0;
+  for (const auto& [name, other] : kQuantities) count += takes(other) ? 1 : 0;
+  t.Reject(key, fmt::format("no {} for {} (only {} {} {})", key, MeasuredQuantityName(q),
+                            QuantitiesThat(takes), TakeVerb(count), key));
+}
+
 void RejectForeignKeys(const TableReader& t, MeasuredQuantity q) {
-  const std::string_view name = MeasuredQuantityName(q);
-  if (!TakesSensor(q)) {
-    t.Reject("sensor", fmt::format("no sensor for {} (only displacement takes sensor)", name));
+  RejectForeignKey(t, q, "sensor", TakesSensor);
+  RejectForeignKey(t, q, "amb", TakesAmb);
+  RejectForeignKey(t, q, "tdb", TakesTdb);
+  RejectForeignKey(t, q, "axis", TakesAxis);
+}
+
+// `unit` (a spelling of the quantity's dimension) or `scale` (SI per record unit), not both.
+void ReadUnit(const TableReader& t, MeasurementChannel* channel) {
+  const Dimension dimension = DimensionOf(channel->quantity);
+  if (t.Has("unit") && t.Has("scale")) {
+    t.Fail("scale", "no scale with unit (give one or the other)");
   }
-  if (!TakesAmb(q)) t.Reject("amb", fmt::format("no amb for {} (only current takes amb)", name));
-  if (!TakesTdb(q)) {
-    t.Reject("tdb",
-             fmt::format("no tdb for {} (only tdb_normal_force and tdb_speed take tdb)", name));
+  if (t.Has("unit")) {
+    const std::string expected =
+        fmt::format("a unit of {} for {} (one of {})", DimensionName(dimension),
+                    MeasuredQuantityName(channel->quantity), SpellingsOf(dimension));
+    const toml::node* node = t.Find("unit");
+    if (!node->is_string()) t.Fail("unit", expected);
+    const std::string unit = node->as_string()->get();
+    for (const UnitSpelling& u : kUnits) {
+      if (u.name != unit) continue;
+      if (u.dimension != dimension) {
+        t.Fail("unit", expected,
+               fmt::format("{:?} (a unit of {})", unit, DimensionName(u.dimension)));
+      }
+      channel->scale = u.si_per_unit;
+      channel->unit = unit;
+      return;
+    }
+    t.Fail("unit", expected);
   }
-  if (!TakesAxis(q)) {
-    t.Reject("axis", fmt::format("no axis for {} (only displacement and current take axis)", name));
+  if (t.Has("scale")) {
+    const std::string what = fmt::format("a finite, non-zero number ({} per record unit)",
+                                         MeasuredQuantitySiUnit(channel->quantity));
+    const double scale = t.Number("scale", NumberRule{.what = what});
+    if (scale == 0.0) t.Fail("scale", what, "0");
+    channel->scale = scale;
   }
 }
 
-MeasurementChannel ReadChannel(const TableReader& t, const ModelParams& params) {
-  t.AllowOnly({"column", "quantity", "sensor", "amb", "tdb", "axis"});
+void ReadWindow(const TableReader& t, MeasurementChannel* channel) {
+  const std::string window = t.Choice("window", {"all", "before_trigger", "after_trigger"}, "all");
+  channel->window = window == "before_trigger"  ? ChannelWindow::kBeforeTrigger
+                    : window == "after_trigger" ? ChannelWindow::kAfterTrigger
+                                                : ChannelWindow::kAll;
+  const NumberRule seconds{.what = "a number of seconds relative to the trigger"};
+  channel->from_s = t.OptionalNumber("from_s", seconds);
+  channel->to_s = t.OptionalNumber("to_s", seconds);
+  if (channel->from_s && channel->to_s && !(*channel->from_s < *channel->to_s)) {
+    t.Fail("to_s", fmt::format("a time after from_s ({} s)", *channel->from_s),
+           fmt::format("{}", *channel->to_s));
+  }
+  // A window that cannot hold a sample whatever the record: after_trigger ending before it,
+  // before_trigger starting after it.
+  const bool empty =
+      (channel->window == ChannelWindow::kAfterTrigger && channel->to_s && *channel->to_s <= 0) ||
+      (channel->window == ChannelWindow::kBeforeTrigger && channel->from_s &&
+       *channel->from_s >= 0);
+  if (empty) {
+    t.Fail(channel->to_s && channel->window == ChannelWindow::kAfterTrigger ? "to_s" : "from_s",
+           fmt::format("a bound that leaves the window \"{}\" some time", window));
+  }
+}
+
+MeasurementChannel ReadChannel(const TableReader& t, const ModelParams& params,
+                               const std::string& time_column) {
+  t.AllowOnly({"column", "quantity", "sensor", "amb", "tdb", "axis", "unit", "scale", "window",
+               "from_s", "to_s"});
   MeasurementChannel channel;
   channel.column = t.String("column");
   if (channel.column.empty()) t.Fail("column", "a non-empty CSV column name");
-  // t is the record's time column (io/measured_csv.hpp), never a channel.
-  if (channel.column == "t") t.Fail("column", "a column other than \"t\" (the record's time)");
+  // The time column (io/measured_csv.hpp) is never a channel.
+  if (channel.column == time_column) {
+    t.Fail("column", fmt::format("a column other than {:?} (the record's time)", time_column));
+  }
   std::vector<std::string_view> names;
   for (const auto& [name, q] : kQuantities) names.push_back(name);
   const std::string quantity = t.Choice("quantity", names);
@@ -91,6 +251,8 @@ MeasurementChannel ReadChannel(const TableReader& t, const ModelParams& params) 
   if (TakesAmb(channel.quantity)) channel.index = ReadComponent(t, "amb", params.ambs, "AMBs");
   if (TakesTdb(channel.quantity)) channel.index = ReadComponent(t, "tdb", params.tdbs, "TDBs");
   if (TakesAxis(channel.quantity)) channel.axis = t.Choice("axis", {"x", "y"}) == "x" ? 0 : 1;
+  ReadUnit(t, &channel);
+  ReadWindow(t, &channel);
   return channel;
 }
 
@@ -114,10 +276,57 @@ std::string MeasurementChannel::Describe(const ModelParams& params) const {
   return out;
 }
 
+bool MeasurementChannel::InWindow(double t_s, double trigger_s) const {
+  if (window == ChannelWindow::kBeforeTrigger && !(t_s < trigger_s)) return false;
+  if (window == ChannelWindow::kAfterTrigger && !(t_s >= trigger_s)) return false;
+  if (from_s && t_s < trigger_s + *from_s) return false;
+  if (to_s && !(t_s < trigger_s + *to_s)) return false;
+  return true;
+}
+
+std::string MeasurementChannel::DescribeWindow() const {
+  std::string out = window == ChannelWindow::kBeforeTrigger  ? "before the trigger"
+                    : window == ChannelWindow::kAfterTrigger ? "after the trigger"
+                                                             : "the whole record";
+  if (from_s) out += fmt::format(", from {} s", *from_s);
+  if (to_s) out += fmt::format(", to {} s", *to_s);
+  if (from_s || to_s) out += " relative to the trigger";
+  return out;
+}
+
+std::string_view MeasuredQuantitySiUnit(MeasuredQuantity quantity) {
+  switch (DimensionOf(quantity)) {
+    case Dimension::kLength:
+      return "m";
+    case Dimension::kCurrent:
+      return "A";
+    case Dimension::kForce:
+      return "N";
+    case Dimension::kSpeed:
+      break;
+  }
+  return "rad/s";
+}
+
+std::optional<double> MeasurementUnitScale(MeasuredQuantity quantity, std::string_view unit) {
+  for (const UnitSpelling& u : kUnits) {
+    if (u.name == unit && u.dimension == DimensionOf(quantity)) return u.si_per_unit;
+  }
+  return std::nullopt;
+}
+
+std::optional<double> TimeUnitScale(std::string_view unit) {
+  for (const auto& [name, scale] : kTimeUnits) {
+    if (name == unit) return scale;
+  }
+  return std::nullopt;
+}
+
 namespace config_detail {
 
 MeasurementParams ReadMeasurement(const TableReader& table, const ModelParams& params) {
-  table.AllowOnly({"sample_rate_Hz", "trigger_time_s", "trigger", "channel"});
+  table.AllowOnly(
+      {"sample_rate_Hz", "trigger_time_s", "trigger", "time_column", "time_unit", "channel"});
   MeasurementParams m;
   // The unit goes in the message unless the shared reader already derives it from the key.
   const bool unit_known = !UnitOfKey("sample_rate_Hz").empty();
@@ -136,12 +345,18 @@ MeasurementParams ReadMeasurement(const TableReader& table, const ModelParams& p
   } else {
     table.FailMissing("trigger_time_s", "a non-negative number (s), or trigger = \"detect\"");
   }
+  m.time_column = table.String("time_column", "t");
+  if (m.time_column.empty()) table.Fail("time_column", "a non-empty CSV column name");
+  std::vector<std::string_view> time_units;
+  for (const auto& [name, scale] : kTimeUnits) time_units.push_back(name);
+  m.time_unit = table.Choice("time_unit", time_units, "s");
+  m.time_scale_s = *TimeUnitScale(m.time_unit);
   const std::string at_least_one = fmt::format("at least one [[{}]]", table.KeyPath("channel"));
   if (!table.Has("channel")) table.FailMissing("channel", at_least_one);
   const std::vector<TableReader> channels = table.TableArray("channel");
   if (channels.empty()) table.Fail("channel", at_least_one);
   for (const TableReader& t : channels) {
-    MeasurementChannel channel = ReadChannel(t, params);
+    MeasurementChannel channel = ReadChannel(t, params, m.time_column);
     for (std::size_t i = 0; i < m.channels.size(); ++i) {
       if (m.channels[i].column != channel.column) continue;
       t.Fail("column", fmt::format("a column no other channel reads ({}[{}] reads it)",

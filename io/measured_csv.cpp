@@ -80,10 +80,12 @@ double ParseNumber(std::string_view field, const std::string& source, std::size_
 }
 
 void ReadHeader(const std::vector<std::string_view>& fields, std::size_t line,
-                MeasuredRecord* record) {
-  if (fields[0] != "t") {
+                std::string_view time_unit, MeasuredRecord* record) {
+  const std::string& time = record->time_column;
+  if (fields[0] != time) {
     Fail(record->source, line,
-         fmt::format("header column 1: expected 't' (time, s), found {}", Found(fields[0])));
+         fmt::format("header column 1: expected '{}' (time, {}), found {}", time, time_unit,
+                     Found(fields[0])));
   }
   for (std::size_t i = 1; i < fields.size(); ++i) {
     const std::string_view name = fields[i];
@@ -92,9 +94,9 @@ void ReadHeader(const std::vector<std::string_view>& fields, std::size_t line,
            fmt::format("header column {}: expected a column name, found an empty field", i + 1));
     }
     const auto previous = std::find(record->columns.begin(), record->columns.end(), name);
-    if (name == "t" || previous != record->columns.end()) {
+    if (name == time || previous != record->columns.end()) {
       const std::size_t first =
-          name == "t" ? 1 : 2 + static_cast<std::size_t>(previous - record->columns.begin());
+          name == time ? 1 : 2 + static_cast<std::size_t>(previous - record->columns.begin());
       Fail(record->source, line,
            fmt::format("header column {}: expected a name no other column has, found {} "
                        "(column {} has it)",
@@ -106,7 +108,7 @@ void ReadHeader(const std::vector<std::string_view>& fields, std::size_t line,
 }
 
 void ReadRow(const std::vector<std::string_view>& fields, std::size_t line,
-             MeasuredRecord* record) {
+             std::string_view time_unit, MeasuredRecord* record) {
   const std::size_t width = 1 + record->columns.size();
   if (fields.size() < width) {
     // Split gives at least one field, so the first missing one is a channel, never t.
@@ -120,11 +122,11 @@ void ReadRow(const std::vector<std::string_view>& fields, std::size_t line,
                      "found {}",
                      width + 1, width, Found(fields[width])));
   }
-  const double t = ParseNumber(fields[0], record->source, line, "t");
+  const double t = ParseNumber(fields[0], record->source, line, record->time_column);
   if (!record->time_s.empty() && !(t > record->time_s.back())) {
     Fail(record->source, line,
-         fmt::format("column 't': expected a time after the previous row's {} s, found {}",
-                     record->time_s.back(), Found(fields[0])));
+         fmt::format("column '{}': expected a time after the previous row's {} {}, found {}",
+                     record->time_column, record->time_s.back(), time_unit, Found(fields[0])));
   }
   record->time_s.push_back(t);
   for (std::size_t c = 0; c < record->columns.size(); ++c) {
@@ -135,7 +137,8 @@ void ReadRow(const std::vector<std::string_view>& fields, std::size_t line,
 
 // The worst interval is the one reported: after a dropped sample every interval may deviate
 // from the shifted mean, but the gap is the one to point at.
-void CheckEvenSampling(const MeasuredRecord& record, const std::vector<std::size_t>& lines) {
+void CheckEvenSampling(const MeasuredRecord& record, const std::vector<std::size_t>& lines,
+                       std::string_view unit) {
   const double mean = record.SampleInterval();
   std::size_t worst = 1;
   double worst_deviation = -1.0;
@@ -148,10 +151,10 @@ void CheckEvenSampling(const MeasuredRecord& record, const std::vector<std::size
   }
   if (worst_deviation <= kMaxIntervalDeviation * mean) return;
   Fail(record.source, lines[worst],
-       fmt::format("column 't': expected a sample interval within {:g} % of the mean {:.6g} s, "
-                   "found {:.6g} s after the row at line {}",
-                   100.0 * kMaxIntervalDeviation, mean,
-                   record.time_s[worst] - record.time_s[worst - 1], lines[worst - 1]));
+       fmt::format("column '{}': expected a sample interval within {:g} % of the mean {:.6g} {}, "
+                   "found {:.6g} {} after the row at line {}",
+                   record.time_column, 100.0 * kMaxIntervalDeviation, mean, unit,
+                   record.time_s[worst] - record.time_s[worst - 1], unit, lines[worst - 1]));
 }
 
 // The reader would refuse what this lets through, so the writer refuses it first.
@@ -166,12 +169,12 @@ void CheckWritable(const std::filesystem::path& path, const MeasuredRecord& reco
   }
   for (std::size_t c = 0; c < record.columns.size(); ++c) {
     const std::string& name = record.columns[c];
-    if (name.empty() || name == "t" || name.find_first_of(",\r\n") != std::string::npos ||
-        Trim(name) != name) {
+    if (name.empty() || name == record.time_column ||
+        name.find_first_of(",\r\n") != std::string::npos || Trim(name) != name) {
       fail(
-          fmt::format("column name {:?} is empty, 't', or holds a comma, line break or "
-                      "surrounding blanks",
-                      name));
+          fmt::format("column name {:?} is empty, the time column's '{}', or holds a comma, line "
+                      "break or surrounding blanks",
+                      name, record.time_column));
     }
     if (std::find(record.columns.begin(), record.columns.begin() + c, name) !=
         record.columns.begin() + c) {
@@ -197,9 +200,11 @@ double MeasuredRecord::SampleInterval() const {
   return (time_s.back() - time_s.front()) / static_cast<double>(time_s.size() - 1);
 }
 
-MeasuredRecord ReadMeasuredCsv(const std::filesystem::path& path) {
+MeasuredRecord ReadMeasuredCsv(const std::filesystem::path& path, const std::string& time_column,
+                               const std::string& time_unit) {
   MeasuredRecord record;
   record.source = path.string();
+  record.time_column = time_column;
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw MeasuredRecordError(fmt::format("{}: cannot open the measured record: {}", record.source,
@@ -218,9 +223,9 @@ MeasuredRecord ReadMeasuredCsv(const std::filesystem::path& path) {
     Split(content, &fields);
     if (header_line == 0) {
       header_line = line;
-      ReadHeader(fields, line, &record);
+      ReadHeader(fields, line, time_unit, &record);
     } else {
-      ReadRow(fields, line, &record);
+      ReadRow(fields, line, time_unit, &record);
       row_lines.push_back(line);
     }
   }
@@ -229,21 +234,29 @@ MeasuredRecord ReadMeasuredCsv(const std::filesystem::path& path) {
   }
   if (header_line == 0) {
     throw MeasuredRecordError(fmt::format(
-        "{}: expected a header row starting with 't', found no lines but comments and blanks",
-        record.source));
+        "{}: expected a header row starting with '{}', found no lines but comments and blanks",
+        record.source, time_column));
   }
   if (record.time_s.size() < 2) {
     Fail(record.source, header_line,
          fmt::format("expected at least 2 rows of samples below the header, found {}",
                      record.time_s.size()));
   }
-  CheckEvenSampling(record, row_lines);
+  CheckEvenSampling(record, row_lines, time_unit);
   return record;
 }
 
 void WriteMeasuredCsv(const std::filesystem::path& path, const MeasuredRecord& record) {
   CheckWritable(path, record);
-  std::string out = "t";
+  if (record.time_column.empty() ||
+      record.time_column.find_first_of(",\r\n") != std::string::npos ||
+      Trim(record.time_column) != record.time_column) {
+    throw MeasuredRecordError(
+        fmt::format("{}: cannot write the measured record: time column name "
+                    "{:?} is empty or holds a comma, line break or blanks",
+                    path.string(), record.time_column));
+  }
+  std::string out = record.time_column;
   for (const std::string& name : record.columns) out += "," + name;
   out += '\n';
   for (std::size_t row = 0; row < record.time_s.size(); ++row) {

@@ -113,6 +113,40 @@ TEST(ConfigMeasurement, ReadsChannelsWithTheModelsIndices) {
   EXPECT_EQ(m.channels[4].Describe(c.params), "rotor_speed");
 }
 
+TEST(ConfigMeasurement, ReadsUnitsWindowsAndTheTimeColumn) {
+  const std::string text = Valid("trigger_time_s = 0.2",
+                                 "trigger_time_s = 0.2\ntime_column = "
+                                 "\"time_ms\"\ntime_unit = \"ms\"");
+  std::string more = text;
+  more.replace(more.find("axis = \"x\""), 10,
+               "axis = \"x\"\nunit = \"um\"\nwindow = "
+               "\"after_trigger\"\nfrom_s = 0.001\nto_s = 0.05");
+  more.replace(more.find("axis = \"y\""), 10, "axis = \"y\"\nscale = 2.5e-3");
+  more.replace(more.find("quantity = \"rotor_speed\""), 24,
+               "quantity = \"rotor_speed\"\nunit = \"rpm\"");
+  const LoadedConfig c = LoadConfigFromString(more, kSource);
+  const MeasurementParams& m = *c.measurement;
+  EXPECT_EQ(m.time_column, "time_ms");
+  EXPECT_EQ(m.time_scale_s, 1e-3);
+  EXPECT_EQ(m.channels[0].scale, 1e-6);
+  EXPECT_EQ(m.channels[0].unit, "um");
+  EXPECT_EQ(m.channels[0].window, ChannelWindow::kAfterTrigger);
+  EXPECT_EQ(m.channels[0].from_s, 0.001);
+  EXPECT_EQ(m.channels[0].to_s, 0.05);
+  EXPECT_TRUE(m.channels[0].InWindow(0.2011, 0.2));
+  EXPECT_FALSE(m.channels[0].InWindow(0.2005, 0.2));
+  EXPECT_FALSE(m.channels[0].InWindow(0.25, 0.2));
+  EXPECT_EQ(m.channels[1].scale, 2.5e-3);
+  EXPECT_TRUE(m.channels[1].unit.empty());
+  EXPECT_NEAR(m.channels[4].scale, 2.0 * 3.141592653589793 / 60.0, 1e-15);
+  // SI and the whole record by default.
+  EXPECT_EQ(m.channels[2].scale, 1.0);
+  EXPECT_FALSE(m.channels[2].Windowed());
+  const LoadedConfig plain = LoadConfigFromString(Rig() + std::string(kValid), kSource);
+  EXPECT_EQ(plain.measurement->time_column, "t");
+  EXPECT_EQ(plain.measurement->time_scale_s, 1.0);
+}
+
 TEST(ConfigMeasurement, DetectedTriggerHasNoTime) {
   const LoadedConfig c =
       LoadConfigFromString(Valid("trigger_time_s = 0.2", "trigger = \"detect\""), kSource);
@@ -168,7 +202,7 @@ std::vector<RuleCase> TableCases() {
        "expected a table ([measurement])", "3"},
       {"UnknownKey", Valid("trigger_time_s = 0.2", "trigger_time_s = 0.2\nrate_Hz = 1"),
        "rate_Hz = 1", "measurement.rate_Hz",
-       "(allowed here: sample_rate_Hz, trigger_time_s, trigger, channel)"},
+       "(allowed here: sample_rate_Hz, trigger_time_s, trigger, time_column, time_unit, channel)"},
       {"SampleRateMissing", Valid("sample_rate_Hz = 20000.0\n", ""), "[measurement]",
        "measurement.sample_rate_Hz",
        "missing key 'measurement.sample_rate_Hz': expected a "
@@ -202,7 +236,9 @@ std::vector<RuleCase> TableCases() {
 std::vector<RuleCase> ChannelCases() {
   return {
       {"UnknownChannelKey", Valid("axis = \"x\"", "axis = \"x\"\ngain = 2"), "gain",
-       "measurement.channel[0].gain", "(allowed here: column, quantity, sensor, amb, tdb, axis)"},
+       "measurement.channel[0].gain",
+       "(allowed here: column, quantity, sensor, amb, tdb, axis, unit, scale, window, from_s, "
+       "to_s)"},
       {"ColumnMissing", Valid("column = \"x_nde\"\n", ""), "[[measurement.channel]]",
        "measurement.channel[0].column", "expected a string"},
       {"ColumnNotString", Valid("column = \"x_nde\"", "column = 3"), "column = 3",
@@ -219,7 +255,8 @@ std::vector<RuleCase> ChannelCases() {
        "column = \"omega\"",
        "measurement.channel[4].quantity",
        "missing key 'measurement.channel[4].quantity': expected one of \"displacement\", "
-       "\"current\", \"tdb_normal_force\", \"tdb_speed\", \"rotor_speed\""},
+       "\"current\", \"controller_command\", \"tdb_normal_force\", \"tdb_support_force\", "
+       "\"tdb_speed\", \"rotor_speed\""},
       {"QuantityUnknown", Valid("quantity = \"rotor_speed\"", "quantity = \"speed\""),
        "quantity = \"speed\"", "measurement.channel[4].quantity",
        "expected one of \"displacement\", \"current\"", "\"speed\""},
@@ -250,7 +287,8 @@ std::vector<RuleCase> ChannelCases() {
       // A key the quantity does not take: the message says which quantity takes it. The values
       // are unique in the text so that the marker finds their line.
       {"AmbOnDisplacement", Valid("sensor = \"nde\"", "amb = \"rear\""), "amb = \"rear\"",
-       "measurement.channel[0].amb", "expected no amb for displacement (only current takes amb)",
+       "measurement.channel[0].amb",
+       "expected no amb for displacement (only current and controller_command take amb)",
        "\"rear\""},
       {"SensorOnCurrent", Valid("amb = \"de\"", "amb = \"de\"\nsensor = \"rear\""),
        "sensor = \"rear\"", "measurement.channel[1].sensor",
@@ -261,18 +299,56 @@ std::vector<RuleCase> ChannelCases() {
       {"TdbOnRotorSpeed",
        Valid("quantity = \"rotor_speed\"", "quantity = \"rotor_speed\"\ntdb = \"rear\""),
        "tdb = \"rear\"", "measurement.channel[4].tdb",
-       "expected no tdb for rotor_speed (only tdb_normal_force and tdb_speed take tdb)"},
+       "expected no tdb for rotor_speed (only tdb_normal_force, tdb_support_force and tdb_speed "
+       "take tdb)"},
       {"TdbOnCurrent", Valid("amb = \"de\"", "amb = \"de\"\ntdb = \"rear\""), "tdb = \"rear\"",
        "measurement.channel[1].tdb",
-       "expected no tdb for current (only tdb_normal_force and tdb_speed take tdb)"},
+       "expected no tdb for current (only tdb_normal_force, tdb_support_force and tdb_speed take "
+       "tdb)"},
       {"AxisOnTdbForce", Valid("tdb = \"de\"", "tdb = \"de\"\naxis = \"left\""), "axis = \"left\"",
        "measurement.channel[2].axis",
-       "expected no axis for tdb_normal_force (only displacement and current take axis)",
+       "expected no axis for tdb_normal_force (only displacement, current, controller_command and "
+       "tdb_support_force take axis)",
        "\"left\""},
       {"AxisOnRotorSpeed",
        Valid("quantity = \"rotor_speed\"", "quantity = \"rotor_speed\"\naxis = \"left\""),
        "axis = \"left\"", "measurement.channel[4].axis",
-       "expected no axis for rotor_speed (only displacement and current take axis)"},
+       "expected no axis for rotor_speed (only displacement, current, controller_command and "
+       "tdb_support_force take axis)"},
+      // Units, windows and the time column.
+      {"UnitOfAnotherDimension", Valid("axis = \"y\"", "axis = \"y\"\nunit = \"mm\""),
+       "unit = \"mm\"", "measurement.channel[1].unit",
+       "expected a unit of current for current (one of \"A\", \"mA\")",
+       "\"mm\" (a unit of length)"},
+      {"UnitUnknown",
+       Valid("quantity = \"rotor_speed\"", "quantity = \"rotor_speed\"\nunit = \"rps\""),
+       "unit = \"rps\"", "measurement.channel[4].unit",
+       "expected a unit of speed for rotor_speed (one of \"rad/s\", \"rpm\", \"Hz\", \"rev/s\")",
+       "\"rps\""},
+      {"UnitAndScale", Valid("axis = \"x\"", "axis = \"x\"\nunit = \"um\"\nscale = 1e-6"),
+       "scale = 1e-6", "measurement.channel[0].scale", "expected no scale with unit"},
+      {"ScaleZero", Valid("axis = \"x\"", "axis = \"x\"\nscale = 0.0"), "scale = 0.0",
+       "measurement.channel[0].scale", "expected a finite, non-zero number (m per record unit)",
+       "0"},
+      {"ScaleNotFinite", Valid("axis = \"x\"", "axis = \"x\"\nscale = inf"), "scale = inf",
+       "measurement.channel[0].scale", "expected a finite, non-zero number (m per record unit)"},
+      {"WindowUnknown", Valid("axis = \"x\"", "axis = \"x\"\nwindow = \"levitated\""),
+       "window = \"levitated\"", "measurement.channel[0].window",
+       "expected one of \"all\", \"before_trigger\", \"after_trigger\"", "\"levitated\""},
+      {"WindowToBeforeFrom", Valid("axis = \"x\"", "axis = \"x\"\nfrom_s = 0.02\nto_s = 0.01"),
+       "to_s = 0.01", "measurement.channel[0].to_s", "expected a time after from_s (0.02 s)",
+       "0.01"},
+      {"WindowEmptyAfterTrigger",
+       Valid("axis = \"x\"", "axis = \"x\"\nwindow = \"after_trigger\"\nto_s = -0.01"),
+       "to_s = -0.01", "measurement.channel[0].to_s",
+       "expected a bound that leaves the window \"after_trigger\" some time"},
+      {"TimeUnitUnknown",
+       Valid("trigger_time_s = 0.2", "trigger_time_s = 0.2\ntime_unit = \"min\""), "time_unit",
+       "measurement.time_unit", "expected one of \"s\", \"ms\", \"us\"", "\"min\""},
+      {"ColumnIsNamedTime",
+       Valid("trigger_time_s = 0.2", "trigger_time_s = 0.2\ntime_column = \"x_nde\""),
+       "column = \"x_nde\"\nquantity", "measurement.channel[0].column",
+       "expected a column other than \"x_nde\" (the record's time)"},
   };
 }
 

@@ -261,7 +261,7 @@ int main(int argc, char** argv) {
   measure_command
       ->add_option("--channels", measure.channels,
                    "Comma list of channel groups: displacement, current, tdb_normal_force, "
-                   "tdb_speed, rotor_speed")
+                   "tdb_speed, rotor_speed, controller_command, tdb_support_force")
       ->type_name("LIST")
       ->capture_default_str();
   measure_command

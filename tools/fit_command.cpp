@@ -19,6 +19,7 @@
 #include "io/event_log.hpp"
 #include "io/json_writer.hpp"
 #include "io/measured_csv.hpp"
+#include "io/measured_record_si.hpp"
 #include "tools/exit_codes.hpp"
 #include "tools/fit/fit_record.hpp"
 #include "tools/fit/run_record_measurement.hpp"
@@ -41,8 +42,10 @@ PhysicalBound BoundOf(MeasuredQuantity q) {
     case MeasuredQuantity::kDisplacement:
       return {1.0, "m"};
     case MeasuredQuantity::kCurrent:
+    case MeasuredQuantity::kControllerCommand:
       return {1e4, "A"};
     case MeasuredQuantity::kTdbNormalForce:
+    case MeasuredQuantity::kTdbSupportForce:
       return {1e9, "N"};
     case MeasuredQuantity::kTdbSpeed:
     case MeasuredQuantity::kRotorSpeed:
@@ -119,9 +122,11 @@ MeasurementParams InDeclaredOrder(MeasurementParams m, const ModelParams& record
             IndexByName(declared.sensors, recorded.sensors.at(c.index).name, "sensor", config);
         break;
       case MeasuredQuantity::kCurrent:
+      case MeasuredQuantity::kControllerCommand:
         c.index = IndexByName(declared.ambs, recorded.ambs.at(c.index).name, "AMB", config);
         break;
       case MeasuredQuantity::kTdbNormalForce:
+      case MeasuredQuantity::kTdbSupportForce:
       case MeasuredQuantity::kTdbSpeed:
         c.index = IndexByName(declared.tdbs, recorded.tdbs.at(c.index).name, "TDB", config);
         break;
@@ -262,7 +267,7 @@ int RunFitCommand(const FitOptions& options) {
                           ": no [measurement] table: say which record column is which quantity "
                           "(see io/config_measurement.hpp)");
       }
-      record = ReadMeasuredCsv(options.measured_path);
+      record = ReadMeasuredRecord(options.measured_path, *config.measurement);
     }
     CheckRecord(from_record ? *from_record : *config.measurement, record, options.config_path);
   } catch (const std::exception& e) {

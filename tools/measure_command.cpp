@@ -20,11 +20,12 @@ namespace ambdrop {
 namespace {
 
 constexpr std::string_view kGroupNames =
-    "displacement, current, tdb_normal_force, tdb_speed, rotor_speed";
+    "displacement, current, tdb_normal_force, tdb_speed, rotor_speed, controller_command, "
+    "tdb_support_force";
 
 /// "displacement,current" → the groups; nullopt (after saying why) for an unknown or no name.
 std::optional<MeasureChannelGroups> ParseGroups(const std::string& list) {
-  MeasureChannelGroups groups{false, false, false, false, false};
+  MeasureChannelGroups groups{false, false, false, false, false, false, false};
   bool any = false;
   std::size_t begin = 0;
   while (begin <= list.size()) {
@@ -35,12 +36,14 @@ std::optional<MeasureChannelGroups> ParseGroups(const std::string& list) {
     while (!name.empty() && name.back() == ' ') name.remove_suffix(1);
     begin = end + 1;
     if (name.empty()) continue;
-    bool* flag = name == "displacement"       ? &groups.displacement
-                 : name == "current"          ? &groups.current
-                 : name == "tdb_normal_force" ? &groups.tdb_normal_force
-                 : name == "tdb_speed"        ? &groups.tdb_speed
-                 : name == "rotor_speed"      ? &groups.rotor_speed
-                                              : nullptr;
+    bool* flag = name == "displacement"         ? &groups.displacement
+                 : name == "current"            ? &groups.current
+                 : name == "tdb_normal_force"   ? &groups.tdb_normal_force
+                 : name == "tdb_speed"          ? &groups.tdb_speed
+                 : name == "rotor_speed"        ? &groups.rotor_speed
+                 : name == "controller_command" ? &groups.controller_command
+                 : name == "tdb_support_force"  ? &groups.tdb_support_force
+                                                : nullptr;
     if (flag == nullptr) {
       fmt::print(stderr, "error: --channels: no group '{}'; the groups are {}\n", name,
                  kGroupNames);

@@ -15,6 +15,7 @@ CurrentSampler::CurrentSampler(const ModelParams& params, double step_s)
 void CurrentSampler::AddSample(std::int64_t step) {
   steps_.push_back(step);
   current_A_.emplace_back();
+  commanded_A_.emplace_back();
 }
 
 const std::vector<CurrentSampler::Currents>& CurrentSampler::Finish() noexcept {
@@ -61,6 +62,7 @@ void CurrentSampler::FillBefore(std::int64_t step) noexcept {
   while (filled_ < steps_.size() && steps_[filled_] < step) {
     Currents& c = current_A_[filled_];
     c = held_;
+    commanded_A_[filled_] = held_;
     for (std::size_t a = 0; a < params_.ambs.size(); ++a) {
       for (int axis = 0; axis < 2; ++axis) {
         if (lost_at_[a][axis] < 0) continue;

@@ -29,6 +29,9 @@ class CurrentSampler final : public RunRecorder {
   void AddSample(std::int64_t step);
   /// Fills the samples still open; the last input holds to the end.
   const std::vector<Currents>& Finish() noexcept;
+  /// Each sample's commanded currents, after Finish: the last input applied from its step or
+  /// earlier, what the controller (on its own supply) goes on commanding after power loss.
+  const std::vector<Currents>& Commanded() const noexcept { return commanded_A_; }
 
   void OnStart(const RecordedStart& start) noexcept override;
   void OnInput(const RecordedInput& input) noexcept override;
@@ -43,6 +46,7 @@ class CurrentSampler final : public RunRecorder {
   double step_s_;
   std::vector<std::int64_t> steps_;
   std::vector<Currents> current_A_;
+  std::vector<Currents> commanded_A_;
   std::size_t filled_ = 0;
   Currents held_{};
   Currents frozen_{};

@@ -20,8 +20,10 @@ const char* UnitOf(MeasuredQuantity q) {
     case MeasuredQuantity::kDisplacement:
       return "m";
     case MeasuredQuantity::kCurrent:
+    case MeasuredQuantity::kControllerCommand:
       return "A";
     case MeasuredQuantity::kTdbNormalForce:
+    case MeasuredQuantity::kTdbSupportForce:
       return "N";
     case MeasuredQuantity::kTdbSpeed:
     case MeasuredQuantity::kRotorSpeed:

@@ -54,6 +54,25 @@ std::vector<MeasurementChannel> Channels(const ModelParams& p, const MeasureChan
   }
   if (g.rotor_speed)
     out.push_back(MeasurementChannel::Of("w_rotor", MeasuredQuantity::kRotorSpeed, -1, -1));
+  // The later groups come last, so that records without them keep their columns.
+  if (g.controller_command) {
+    for (std::size_t a = 0; a < p.ambs.size(); ++a) {
+      for (int axis = 0; axis < 2; ++axis) {
+        out.push_back(MeasurementChannel::Of(
+            fmt::format("cmd_{}_{}", p.ambs[a].name, MeasurementAxisName(axis)),
+            MeasuredQuantity::kControllerCommand, static_cast<int>(a), axis));
+      }
+    }
+  }
+  if (g.tdb_support_force) {
+    for (std::size_t t = 0; t < p.tdbs.size(); ++t) {
+      for (int axis = 0; axis < 2; ++axis) {
+        out.push_back(MeasurementChannel::Of(
+            fmt::format("fs_{}_{}", p.tdbs[t].name, MeasurementAxisName(axis)),
+            MeasuredQuantity::kTdbSupportForce, static_cast<int>(t), axis));
+      }
+    }
+  }
   // A TDB named "rotor" would collide with the rotor's speed column.
   std::set<std::string> seen;
   for (const MeasurementChannel& c : out) {
@@ -77,7 +96,11 @@ double ObservedValue(const MeasurementChannel& c, const Observation& obs,
       return obs.tdb[c.index].tdb_spin_rad_s;
     case MeasuredQuantity::kRotorSpeed:
       return obs.spin_speed_rad_s;
+    case MeasuredQuantity::kTdbSupportForce:
+      // What a load cell under the TDB reads, untared (io/config_measurement.hpp).
+      return c.axis == 0 ? obs.tdb[c.index].support_x_N : obs.tdb[c.index].support_y_N;
     case MeasuredQuantity::kCurrent:
+    case MeasuredQuantity::kControllerCommand:
       break;  // filled after the run (CurrentSampler)
   }
   return 0.0;
@@ -86,8 +109,10 @@ double ObservedValue(const MeasurementChannel& c, const Observation& obs,
 double NoiseStdDev(const MeasurementChannel& c, const MeasureOptions& o) {
   switch (c.quantity) {
     case MeasuredQuantity::kCurrent:
+    case MeasuredQuantity::kControllerCommand:
       return o.current_noise_A;
     case MeasuredQuantity::kTdbNormalForce:
+    case MeasuredQuantity::kTdbSupportForce:
       return o.force_noise_N;
     case MeasuredQuantity::kTdbSpeed:
     case MeasuredQuantity::kRotorSpeed:
@@ -116,10 +141,19 @@ std::uint64_t StreamSeed(std::uint64_t seed, const MeasurementChannel& c) {
     case MeasuredQuantity::kRotorSpeed:
       id = 48;
       break;
+    case MeasuredQuantity::kControllerCommand:
+      id = 49 + 2 * static_cast<std::uint64_t>(c.index) + static_cast<std::uint64_t>(c.axis);
+      break;
+    case MeasuredQuantity::kTdbSupportForce:
+      // After the normal forces' ids, below the speeds'.
+      id = 16 + kMaxTdbs + 2 * static_cast<std::uint64_t>(c.index) +
+           static_cast<std::uint64_t>(c.axis);
+      break;
     case MeasuredQuantity::kDisplacement:
       break;
   }
-  static_assert(2 * kMaxAmbs < 16 && kMaxTdbs < 16, "stream ids overlap");
+  static_assert(2 * kMaxAmbs < 16 && 3 * kMaxTdbs <= 16 && 49 + 2 * kMaxAmbs <= kStreams,
+                "stream ids overlap");
   return seed * kStreams + id;
 }
 
@@ -213,11 +247,17 @@ SyntheticMeasurement MakeMeasuredRecord(const ModelParams& truth, const MeasureO
   }
 
   const std::vector<Currents>& current_A = currents.Finish();
+  const std::vector<Currents>& command_A = currents.Commanded();
   for (std::size_t c = 0; c < channels.size(); ++c) {
     const MeasurementChannel& ch = channels[c];
     if (ch.quantity == MeasuredQuantity::kCurrent) {
       for (std::size_t row = 0; row < current_A.size(); ++row) {
         record.values[c][row] = current_A[row][ch.index][ch.axis];
+      }
+    }
+    if (ch.quantity == MeasuredQuantity::kControllerCommand) {
+      for (std::size_t row = 0; row < command_A.size(); ++row) {
+        record.values[c][row] = command_A[row][ch.index][ch.axis];
       }
     }
     // Noise over every sample, before rows are dropped: a later --from-s cuts the same record.
@@ -245,6 +285,8 @@ SyntheticMeasurement MakeMeasuredRecord(const ModelParams& truth, const MeasureO
 std::string MeasurementTableToml(const ModelParams& truth, const MeasurementParams& m) {
   std::string out = "[measurement]\n";
   out += "sample_rate_Hz = " + TomlFloat(m.sample_rate_Hz) + "\n";
+  if (m.time_column != "t") out += "time_column = " + TomlString(m.time_column) + "\n";
+  if (m.time_unit != "s") out += "time_unit = " + TomlString(m.time_unit) + "\n";
   if (m.trigger_time_s) {
     out += "trigger_time_s = " + TomlFloat(*m.trigger_time_s) + "\n";
   } else {
@@ -259,9 +301,11 @@ std::string MeasurementTableToml(const ModelParams& truth, const MeasurementPara
         out += "sensor = " + TomlString(truth.sensors.at(c.index).name) + "\n";
         break;
       case MeasuredQuantity::kCurrent:
+      case MeasuredQuantity::kControllerCommand:
         out += "amb = " + TomlString(truth.ambs.at(c.index).name) + "\n";
         break;
       case MeasuredQuantity::kTdbNormalForce:
+      case MeasuredQuantity::kTdbSupportForce:
       case MeasuredQuantity::kTdbSpeed:
         out += "tdb = " + TomlString(truth.tdbs.at(c.index).name) + "\n";
         break;
@@ -269,6 +313,15 @@ std::string MeasurementTableToml(const ModelParams& truth, const MeasurementPara
         break;
     }
     if (c.axis >= 0) out += fmt::format("axis = \"{}\"\n", MeasurementAxisName(c.axis));
+    if (!c.unit.empty()) {
+      out += "unit = " + TomlString(c.unit) + "\n";
+    } else if (c.scale != 1.0) {
+      out += "scale = " + TomlFloat(c.scale) + "\n";
+    }
+    if (c.window == ChannelWindow::kBeforeTrigger) out += "window = \"before_trigger\"\n";
+    if (c.window == ChannelWindow::kAfterTrigger) out += "window = \"after_trigger\"\n";
+    if (c.from_s) out += "from_s = " + TomlFloat(*c.from_s) + "\n";
+    if (c.to_s) out += "to_s = " + TomlFloat(*c.to_s) + "\n";
   }
   return out;
 }

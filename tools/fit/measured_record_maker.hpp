@@ -20,14 +20,19 @@ struct MeasureChannelGroups {
   bool tdb_normal_force = true;  ///< f_<tdb>: normal force (N)
   bool tdb_speed = true;         ///< w_<tdb>: inner-race speed (rad/s)
   bool rotor_speed = true;       ///< w_rotor (rad/s)
+  /// cmd_<amb>_x, cmd_<amb>_y: the controller's commanded currents (A), which go on after
+  /// power loss where i_* fades.
+  bool controller_command = false;
+  /// fs_<tdb>_x, fs_<tdb>_y: the support force a load cell under the TDB reads (N, untared).
+  bool tdb_support_force = false;
 };
 
 struct MeasureOptions {
   double rate_Hz = 0.0;  ///< sample rate; 0: the truth config's controller.rate_Hz
   MeasureChannelGroups channels;
   /// Standard deviations of the additive noise (approximately Gaussian, PortableRandom).
-  double current_noise_A = 0.0;
-  double force_noise_N = 0.0;
+  double current_noise_A = 0.0;  ///< on coil currents and controller commands
+  double force_noise_N = 0.0;    ///< on normal and support forces
   double speed_noise_rad_s = 0.0;
   std::uint64_t seed = 1;  ///< of the additive noise; sensor noise keeps the config's seeds
   /// Rows before this run time are left out; t stays run time.

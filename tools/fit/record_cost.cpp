@@ -1,9 +1,13 @@
 #include "tools/fit/record_cost.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <stdexcept>
+#include <utility>
 
 #include "tools/fit/noise_floor.hpp"
 
@@ -63,6 +67,24 @@ bool Smooth(MeasuredQuantity q) {
          q == MeasuredQuantity::kCurrent;
 }
 
+// A controller's output answers its sensors' noise as the coil current does while levitated.
+bool CurrentLike(MeasuredQuantity q) {
+  return q == MeasuredQuantity::kCurrent || q == MeasuredQuantity::kControllerCommand;
+}
+
+bool ForceLike(MeasuredQuantity q) {
+  return q == MeasuredQuantity::kTdbNormalForce || q == MeasuredQuantity::kTdbSupportForce;
+}
+
+// Rows [first, last) of the record inside [from, to) and the channel's window.
+std::pair<std::size_t, std::size_t> RowsIn(const MeasuredRecord& r, const MeasurementChannel& ch,
+                                           double trigger_s, std::size_t first, std::size_t last) {
+  while (first < last && !ch.InWindow(r.time_s[first], trigger_s)) ++first;
+  std::size_t end = first;
+  while (end < last && ch.InWindow(r.time_s[end], trigger_s)) ++end;
+  return {first, end};
+}
+
 }  // namespace
 
 RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& measurement,
@@ -94,30 +116,44 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
     const std::vector<double>& v = record.values[col];
     column_.push_back(col);
     range_.push_back(0.0);
-    const bool current = ch.quantity == MeasuredQuantity::kCurrent;
+    // Open loop no controller runs, so nothing predicts its command: not compared.
+    if (ch.quantity == MeasuredQuantity::kControllerCommand && !closed) continue;
+    const bool current = CurrentLike(ch.quantity);
     // Sample-by-sample rows; currents before the trigger are inputs (open loop) or compared
     // by their levitated mean and harmonics (closed loop).
     const double from = current ? trigger_s_ : compare_from_s_;
     const double to = Smooth(ch.quantity) && !early_only ? t_end + 1.0 : early_end_s_;
+    // The rows the channel's window lets in; a window that holds none of the rows the cost
+    // could compare is a mistake in the table, not a channel to drop quietly.
+    const auto [window_first, window_end] =
+        RowsIn(record, ch, trigger_s_, current && !closed ? trigger_row : start_row, rows);
+    if (window_first == window_end) {
+      throw std::runtime_error(fmt::format(
+          "{}: column '{}' ({}): its window ({}) holds no sample the fit can compare{}",
+          record.source, ch.column, ch.Describe(declared), ch.DescribeWindow(),
+          current && !closed ? " (open loop, the currents before the trigger drive the model)"
+                             : ""));
+    }
     std::vector<std::size_t> raw;
-    for (std::size_t j = 0; j < rows; ++j) {
+    for (std::size_t j = window_first; j < window_end; ++j) {
       if (record.time_s[j] >= from && record.time_s[j] < to) raw.push_back(j);
     }
     std::vector<Block> blocks;
-    if (current && closed && trigger_row > start_row + 4) {
+    const auto [lev_first, lev_end] = RowsIn(record, ch, trigger_s_, start_row, trigger_row);
+    if (current && closed && lev_end > lev_first + 4) {
       // Mean, then 1X and 2X cosine and sine over the levitated rows.
-      const std::size_t n = trigger_row - start_row;
+      const std::size_t n = lev_end - lev_first;
       for (int k = 0; k <= 4; ++k) {
-        Block b{c, start_row, std::vector<double>(n), 0.0, 0.0, 0.0};
+        Block b{c, lev_first, std::vector<double>(n), 0.0, 0.0, 0.0};
         for (std::size_t i = 0; i < n; ++i) {
-          const double angle = spin * record.time_s[start_row + i] * (k <= 2 ? 1.0 : 2.0);
+          const double angle = spin * record.time_s[lev_first + i] * (k <= 2 ? 1.0 : 2.0);
           const double basis = k == 0 ? 1.0 : (k % 2 == 1 ? std::cos(angle) : std::sin(angle));
           b.coefficients[i] = (k == 0 ? 1.0 : 2.0) * basis / static_cast<double>(n);
         }
         blocks.push_back(std::move(b));
       }
     }
-    if (early_only && ch.quantity == MeasuredQuantity::kTdbNormalForce) {
+    if (early_only && ForceLike(ch.quantity)) {
       // Impact forces are spikes a few samples wide: sample by sample, a spike a sample early
       // is off by its whole height, and the cost turns from a bowl into a cusp that gradients
       // cannot descend. Their impulse over short windows moves smoothly with the timing.
@@ -134,21 +170,26 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
       }
       raw.clear();
     }
-    if (!early_only && !Smooth(ch.quantity) && settled_row < rows && settled_from_s_ > to) {
-      const std::size_t n = rows - settled_row;
+    const auto [settled_first, settled_end] = RowsIn(record, ch, trigger_s_, settled_row, rows);
+    if (!early_only && !Smooth(ch.quantity) && settled_end > settled_first &&
+        settled_from_s_ > to) {
+      const std::size_t n = settled_end - settled_first;
       blocks.push_back(
-          {c, settled_row, std::vector<double>(n, 1.0 / static_cast<double>(n)), 0.0, 0.0, 0.0});
+          {c, settled_first, std::vector<double>(n, 1.0 / static_cast<double>(n)), 0.0, 0.0, 0.0});
     }
     if (raw.empty() && blocks.empty()) continue;
+    // Range and noise over the window alone: what lies outside it (a channel gone bad after
+    // the trigger) must not set its weight.
+    const std::size_t range_first = std::max(start_row, window_first);
     double lo = std::numeric_limits<double>::infinity();
     double hi = -lo;
-    for (std::size_t j = start_row; j < rows; ++j) {
+    for (std::size_t j = range_first; j < window_end; ++j) {
       lo = std::min(lo, v[j]);
       hi = std::max(hi, v[j]);
     }
     // A channel that carries nothing but its noise (a coil current of an AMB law that takes
     // none, a sensor that never moves) tells the fit nothing: it is left out.
-    if (!(hi - lo > 10.0 * NoiseSigma(v, start_row, rows))) {
+    if (!(hi - lo > 10.0 * NoiseSigma(v, range_first, window_end))) {
       ++uninformative_;
       left_out_.push_back(c);
       continue;

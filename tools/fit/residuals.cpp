@@ -38,11 +38,12 @@ std::vector<double> ResidualSeries(const MeasurementParams& m, const MeasuredRec
   const MeasurementChannel& ch = m.channels[c];
   const std::vector<double>& measured = r.values[r.Column(ch.column)];
   std::vector<double> e(r.time_s.size(), kNaN);
+  const bool current = ch.quantity == MeasuredQuantity::kCurrent ||
+                       ch.quantity == MeasuredQuantity::kControllerCommand;
   for (std::size_t j = sim.first_row; j < sim.first_row + sim.rows; ++j) {
-    if (!sim.closed_loop && ch.quantity == MeasuredQuantity::kCurrent &&
-        r.time_s[j] < sim.trigger_time_s) {
-      continue;
-    }
+    if (!sim.closed_loop && current && r.time_s[j] < sim.trigger_time_s) continue;
+    if (!ch.InWindow(r.time_s[j], sim.trigger_time_s)) continue;
+    // NaN where the model predicts nothing (a command open loop).
     e[j] = measured[j] - sim.values[c][j];
   }
   return e;

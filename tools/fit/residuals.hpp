@@ -53,7 +53,9 @@ ResidualReport ComputeResiduals(const ModelParams& params, const MeasurementPara
                                 const MeasuredRecord& record, const SimulatedRecord& sim,
                                 double start_s);
 
-/// The residual series of channel c (measured - model), NaN where not compared.
+/// The residual series of channel c (measured - model), NaN where not compared: outside the
+/// channel's window, currents and commands before the trigger open loop, and commands open loop
+/// throughout (no controller runs to predict them).
 std::vector<double> ResidualSeries(const MeasurementParams& measurement,
                                    const MeasuredRecord& record, const SimulatedRecord& sim,
                                    std::size_t c);

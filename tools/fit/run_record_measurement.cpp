@@ -13,7 +13,8 @@ namespace ambdrop {
 namespace {
 
 /// The columns in `ambdrop measure`'s order and with its names.
-std::vector<MeasurementChannel> Channels(const ModelParams& p, bool with_states) {
+std::vector<MeasurementChannel> Channels(const ModelParams& p, bool with_states,
+                                         bool with_commands) {
   std::vector<MeasurementChannel> out;
   for (std::size_t i = 0; i < p.sensors.size(); ++i) {
     for (int axis = 0; axis < 2; ++axis) {
@@ -40,6 +41,15 @@ std::vector<MeasurementChannel> Channels(const ModelParams& p, bool with_states)
     }
     out.push_back(MeasurementChannel::Of("w_rotor", MeasuredQuantity::kRotorSpeed, -1, -1));
   }
+  if (with_commands) {
+    for (std::size_t a = 0; a < p.ambs.size(); ++a) {
+      for (int axis = 0; axis < 2; ++axis) {
+        out.push_back(MeasurementChannel::Of(
+            fmt::format("cmd_{}_{}", p.ambs[a].name, MeasurementAxisName(axis)),
+            MeasuredQuantity::kControllerCommand, static_cast<int>(a), axis));
+      }
+    }
+  }
   std::set<std::string> seen;
   for (const MeasurementChannel& c : out) {
     if (!seen.insert(c.column).second) {
@@ -60,6 +70,8 @@ double StateValue(const MeasurementChannel& c, const RecordedStateSample& s) {
       return s.spin_speed_rad_s;
     case MeasuredQuantity::kDisplacement:
     case MeasuredQuantity::kCurrent:
+    case MeasuredQuantity::kControllerCommand:
+    case MeasuredQuantity::kTdbSupportForce:  // not in a record's state events
       break;
   }
   return 0.0;
@@ -67,7 +79,8 @@ double StateValue(const MeasurementChannel& c, const RecordedStateSample& s) {
 
 }  // namespace
 
-RecordAsMeasurement MeasurementFromRunRecord(const RunRecordFile& file, const ModelParams& params) {
+RecordAsMeasurement MeasurementFromRunRecord(const RunRecordFile& file, const ModelParams& params,
+                                             bool with_commands) {
   const std::vector<RecordedSensors>& samples = file.sensors;
   const double step_s = file.header.step_s;
   if (!(step_s > 0.0)) throw std::invalid_argument("the record's step_s is not positive");
@@ -110,7 +123,7 @@ RecordAsMeasurement MeasurementFromRunRecord(const RunRecordFile& file, const Mo
   } else {
     m.detect_trigger = true;
   }
-  m.channels = Channels(params, !file.states.empty());
+  m.channels = Channels(params, !file.states.empty(), with_commands);
 
   MeasuredRecord& r = out.record;
   r.source = "run record";
@@ -136,6 +149,7 @@ RecordAsMeasurement MeasurementFromRunRecord(const RunRecordFile& file, const Mo
     currents.OnPower(file.run.power[next_power]);
   }
   const std::vector<CurrentSampler::Currents>& current_A = currents.Finish();
+  const std::vector<CurrentSampler::Currents>& command_A = currents.Commanded();
 
   std::size_t state = 0;  // the last state at or before the row (the first before any)
   for (std::size_t row = 0; row < rows; ++row) {
@@ -152,6 +166,10 @@ RecordAsMeasurement MeasurementFromRunRecord(const RunRecordFile& file, const Mo
         case MeasuredQuantity::kCurrent:
           v = current_A[row][ch.index][ch.axis];
           break;
+        case MeasuredQuantity::kControllerCommand:
+          v = command_A[row][ch.index][ch.axis];
+          break;
+        case MeasuredQuantity::kTdbSupportForce:
         case MeasuredQuantity::kTdbNormalForce:
         case MeasuredQuantity::kTdbSpeed:
         case MeasuredQuantity::kRotorSpeed:

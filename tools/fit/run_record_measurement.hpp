@@ -31,6 +31,10 @@ struct RecordAsMeasurement {
 /// and gives the flux decay the currents followed. Throws std::invalid_argument when the record
 /// cannot be read so: fewer than two sensor samples (a run without a controller sends none),
 /// state events for another number of TDBs, two columns of one name.
-RecordAsMeasurement MeasurementFromRunRecord(const RunRecordFile& file, const ModelParams& params);
+/// `with_commands` adds cmd_<amb>_x, cmd_<amb>_y after the other columns: the controller's
+/// commanded currents (the last input applied from the row's step or earlier), which go on
+/// after power loss where the coil currents fade.
+RecordAsMeasurement MeasurementFromRunRecord(const RunRecordFile& file, const ModelParams& params,
+                                             bool with_commands = false);
 
 }  // namespace ambdrop

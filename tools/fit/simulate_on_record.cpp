@@ -16,6 +16,7 @@
 #include "controller_if/state_dump.hpp"
 #include "rt_core/amb_force.hpp"
 #include "rt_core/model.hpp"
+#include "tools/fit/held_current.hpp"
 
 namespace ambdrop {
 namespace {
@@ -161,12 +162,23 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
       options.rotor_cache ? options.rotor_cache->BuildModel(params) : BuildModel(params);
   const int n = model.modes();
 
-  // Measured currents by AMB axis; the rest carry the static load.
+  // Measured currents by AMB axis; the rest carry the static load. While the axis has power
+  // its coil follows the controller's command, so a command channel stands in for an axis
+  // without a coil-current channel.
   std::array<std::array<int, 2>, kMaxAmbs> current_column;
   for (auto& a : current_column) a = {-1, -1};
-  for (const MeasurementChannel& ch : m.channels) {
-    if (ch.quantity == MeasuredQuantity::kCurrent) {
-      current_column[ch.index][ch.axis] = r.Column(ch.column);
+  for (const MeasuredQuantity q :
+       {MeasuredQuantity::kControllerCommand, MeasuredQuantity::kCurrent}) {
+    for (const MeasurementChannel& ch : m.channels) {
+      if (ch.quantity == q) current_column[ch.index][ch.axis] = r.Column(ch.column);
+    }
+  }
+  // What each measured axis held when the power failed: from the levitated samples alone.
+  std::array<std::array<double, 2>, kMaxAmbs> held_A{};
+  for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+    for (int axis = 0; axis < 2; ++axis) {
+      const int c = current_column[a][axis];
+      if (c >= 0) held_A[a][axis] = HeldCurrentAtTrigger(r, c, out.trigger_time_s);
     }
   }
   const ControlInput static_load = StaticLoadInput(model);
@@ -183,6 +195,36 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
       }
     }
   };
+  const auto held_currents = [&] {
+    for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+      for (int axis = 0; axis < 2; ++axis) {
+        if (current_column[a][axis] >= 0) input.amb[a].current_A[axis] = held_A[a][axis];
+      }
+    }
+  };
+  // The controller's output before the power state overrides an unpowered axis's current: the
+  // controller, on its own supply, keeps commanding.
+  std::array<std::array<double, 2>, kMaxAmbs> command_A{};
+  // (The controller's output includes its amplifier loop when one is declared: ambdrop models
+  // it as the controller's last stage, and records made from runs carry the same.)
+  const auto keep_command = [&] {
+    for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+      command_A[a] = input.amb[a].current_A;
+    }
+  };
+  // A load cell reads its housing's share of the rig's weight before any contact: the tare.
+  // The record's is its mean before the trigger (no contact while levitated), the model's its
+  // first predicted value; the prediction is the model's change on the record's tare.
+  std::vector<double> record_tare(m.channels.size(), 0.0);
+  std::vector<double> model_tare(m.channels.size(), kNaN);
+  for (std::size_t c = 0; c < m.channels.size(); ++c) {
+    if (m.channels[c].quantity != MeasuredQuantity::kTdbSupportForce) continue;
+    const std::vector<double>& v = r.values[r.Column(m.channels[c].column)];
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t j = 0; j < v.size() && r.time_s[j] < out.trigger_time_s; ++j, ++n) sum += v[j];
+    record_tare[c] = n > 0 ? sum / static_cast<double>(n) : v.front();
+  }
 
   Simulator sim(model);
   std::optional<ReferenceController> controller;
@@ -196,6 +238,7 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
     controller.emplace(model, period);
     controller_sensors.emplace(model.params.sensors, period);
     controller->Initial(&input);
+    keep_command();
     state = sim.InitialState(static_load);
   } else if (closed) {
     state = sim.InitialState(static_load);
@@ -258,6 +301,18 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
           v = input.amb[ch.index].current_A[ch.axis] *
               std::sqrt(std::max(0.0, input.amb[ch.index].force_scale[ch.axis]));
           break;
+        case MeasuredQuantity::kControllerCommand:
+          // Open loop no controller runs: the command after the trigger is unknown (the record's
+          // command channel is then not compared, tools/fit/record_cost.hpp).
+          v = closed ? command_A[ch.index][ch.axis] : kNaN;
+          break;
+        case MeasuredQuantity::kTdbSupportForce: {
+          const TdbForce& f = obs.tdb[ch.index];
+          const double support = ch.axis == 0 ? f.support_x_N : f.support_y_N;
+          if (std::isnan(model_tare[c])) model_tare[c] = support;
+          v = support - model_tare[c] + record_tare[c];
+          break;
+        }
         case MeasuredQuantity::kTdbNormalForce:
           v = obs.tdb[ch.index].normal_force_N;
           break;
@@ -279,7 +334,7 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
     if (k == model.trigger_step) {
       // What flowed when power failed is what was measured then: a controller answers its
       // sensors' noise, so the model's own command at that instant is off by that jitter.
-      measured_currents(t_record, true);
+      held_currents();
       power.Apply(failure, k, input);
     }
     if (controlled && k % substeps == 0) {
@@ -288,6 +343,8 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
       controller->Update(controller_readings, &input);
     }
     if (!closed && k < model.trigger_step) measured_currents(t_record, false);
+    if (!controlled) keep_command();
+    if (controlled && k % substeps == 0) keep_command();
     power.Fill(k, &input);
     // Rows on this step (the nearest step to their time) are predicted from this state, with
     // the currents applied over this step.
