@@ -339,7 +339,9 @@ def score(record, truth, fit, declared):
         ok, text = compare_value(k, f, t, declared.value(k, truth_keys),
                                  declared.controller_period_s)
         values_ok = values_ok and ok
-        texts.append(text + ("" if ok else " !"))
+        text += "" if ok else " !"
+        if text not in texts:  # the same key on every AMB / sensor: once
+            texts.append(text)
     if named and not texts:
         values_ok = False
         notes.append("no value to compare")
@@ -347,7 +349,7 @@ def score(record, truth, fit, declared):
         notes.append("value off")
     cut_ok = cut >= MIN_CUT
     if not cut_ok:
-        notes.append(f"cut {cut:.2g}x < {MIN_CUT:g}x")
+        notes.append(f"cut {cut:.3g}x < {MIN_CUT:g}x")
     row["value"] = "; ".join(texts)
     row["hit"] = named and values_ok and cut_ok
     row["note"] = "; ".join(notes)
@@ -377,7 +379,7 @@ def run_fit(args, record_dir, blind_dir, fit_dir):
 
 
 def fmt_cut(cut):
-    return "inf" if math.isinf(cut) else f"{cut:.2g}x"
+    return "inf" if math.isinf(cut) else f"{cut:.3g}x"
 
 
 COLUMNS = ["record", "truth", "verdict", "first chosen", "value vs truth", "cut", "s", ""]
