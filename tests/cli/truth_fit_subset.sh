@@ -49,6 +49,7 @@ done
 
 python3 - "$source_dir/tools/truth" "$tool" "$config" "${cases[@]}" <<'PY'
 import json, sys
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, sys.argv[1])
 import battery  # the scoring rules, in one place
 
