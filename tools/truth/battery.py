@@ -1,0 +1,510 @@
+#!/usr/bin/env python3
+"""The scoring battery of `ambdrop fit` on independent records (issues 15 and 23).
+
+A benchmark, not a test: it makes every record of `ambdrop_truth --battery`, runs `ambdrop fit`
+on each blind copy, reads the record's truth.json and scores the fit by the issues' table. It
+exits 0 whatever the score; non-zero only when a fit or the generator fails or a file is missing.
+
+    battery.py AMBDROP AMBDROP_TRUTH RIG.json CONFIG.toml OUT
+               [--jobs N] [--only NAME ...] [--record-file record_si.csv]
+               [--markdown FILE] [--score-only] [--fit-arg ARG ...]
+
+    AMBDROP, AMBDROP_TRUTH  the two binaries (build/ambdrop, build/tools/truth/ambdrop_truth)
+    RIG.json, CONFIG.toml   the generator's rig and its translation into an ambdrop config
+                            (tools/truth/rigs/rigid_rotor_a.json, tests/truth/rigid_rotor_a.toml)
+    OUT                     OUT/records (the battery), OUT/fits/<record>/ (fit.json, fit.log)
+    --jobs N                fits run at once (default 1; each fit already uses 2 threads)
+    --only NAME             only the records whose effect kind or record name is NAME (repeat)
+    --record-file F         which file of each blind record goes to `--measured` (default
+                            record_si.csv: SI with a `t` column; record.csv once the config's
+                            [measurement] takes units and a time column)
+    --markdown FILE         the table also as markdown
+    --score-only            neither generate nor fit: score the fit.json files already in OUT
+    --fit-arg ARG           passed on to `ambdrop fit` (repeat; e.g. --fit-arg=--threads=1)
+
+Standard library only. See tools/truth/README.md ("Scoring battery") and docs/verification.md.
+"""
+
+import argparse
+import concurrent.futures
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+import tomllib
+from pathlib import Path
+
+# ---------------------------------------------------------------------------------------------
+# Scoring rules (issue 15 "How it is checked", issue 23 "How it is checked"). All in this block.
+#
+# A record is right (HIT) when:
+#   - clean (the truth sets no key, effect "clean"): verdict `no_effect_needed`. An effect chosen
+#     on a clean record is "invented".
+#   - outside the library (the truth sets no key and is not clean, e.g. side_pull): verdict
+#     `unexplained`.
+#   - otherwise, all of:
+#     1. name: the first chosen effect's `set` lines touch a key group of the truth, and every
+#        key group of the truth is touched by a chosen effect's `set` lines or by an effect listed
+#        in `equivalent` (a look-alike or a pair counts when both are listed);
+#     2. value: every numeric key that the truth and a chosen effect both set is within 20 % of
+#        the true change from the declared value (VALUE_TOLERANCE); angles within 0.35 rad;
+#        zero-valued changes within ABSOLUTE_TOLERANCE;
+#     3. cut: the overall residual above the noise floor falls at least 3x
+#        (rms_before.overall_above_noise / rms_after.overall_above_noise >= MIN_CUT).
+#
+# MAPPING RULE (truth keys <-> fit effects), the one place it is written down:
+#   - A key is its `--set` path. Keys are compared after `normalise_key`: an unbalance table's
+#     own name is not physics, so `unbalance.<name>.<leaf>` becomes `unbalance.static.<leaf>`
+#     when the lines set one unbalance table and `unbalance.couple_<k>.<leaf>` (k = 1, 2, ... by
+#     position_m) when they set several (the generator's hidden_static / hidden_couple_a,b and the
+#     fit's fitted / fitted_couple_a,b).
+#   - A key group is a key's table (the path without its last segment, normalised). Switch
+#     keys (SWITCH_LEAVES: `enabled`, `current_law`, `model`, ...) do not make a touch by
+#     themselves; a touch is a shared non-switch key.
+#   - A chosen effect's keys are its `set` lines in fit.json. An `equivalent` entry is a name
+#     only; its keys come from EFFECT_NAME_KEYS (the fit's effect library,
+#     tools/fit/effect_library.cpp): family, then ":item" for one TDB / AMB / sensor, no item
+#     for every one of them.
+#   - Values: a key's declared value is what `ambdrop keys CONFIG --json` reads, unless the
+#     truth switches its table on (`<table>.enabled=true`) and the config (TOML, `base =` chain)
+#     has it off: then the declared value is "none" and the change is the whole truth value.
+MIN_CUT = 3.0
+VALUE_TOLERANCE = 0.2  # of the true change from the declared value
+ANGLE_TOLERANCE_RAD = 0.35
+# Absolute tolerances where the true change is zero (or below the tolerance), by key leaf.
+ABSOLUTE_TOLERANCE = {
+    "delay_s": None,  # half a controller period (the fit delays in whole samples); see below
+    "eccentricity_m": 1e-6,  # kg m with a unit mass
+    "x_m": 1e-6,
+    "y_m": 1e-6,
+    "offset_m": 1e-6,
+    "clearance_m": 1e-6,
+    "drag_torque_N_m": 1e-4,
+    "time_constant_s": 1e-4,
+    "hold_time_s": 1e-4,
+    "coefficient": 0.01,
+    "gain": 0.01,
+    "cutoff_Hz": 100.0,
+}
+DEFAULT_ABSOLUTE_TOLERANCE = 1e-9
+SWITCH_LEAVES = {"enabled", "current_law", "model", "ribbon", "law"}
+# Keys that place an effect rather than size it: not compared as values.
+NOT_COMPARED_LEAVES = SWITCH_LEAVES | {"position_m", "mass_kg"}
+
+# The fit's effect names -> the --set key patterns they write ("*" = every item).
+EFFECT_NAME_KEYS = {
+    "tdb_misalignment": ["tdb.{}.misalignment.x_m", "tdb.{}.misalignment.y_m"],
+    "tdb_clearance": ["tdb.{}.clearance_m"],
+    "friction_coefficient": ["tdb.{}.friction.coefficient",
+                             "tdb.{}.ball_bearing_tdb.friction.kinetic_coefficient"],
+    "unbalance": ["unbalance.static.eccentricity_m", "unbalance.static.phase_rad"],
+    "couple_unbalance": ["unbalance.couple_1.eccentricity_m", "unbalance.couple_1.phase_rad",
+                         "unbalance.couple_2.eccentricity_m", "unbalance.couple_2.phase_rad"],
+    "amb_flux_decay": ["amb.{}.flux_decay.time_constant_s"],
+    "sensor_runout": ["sensor.{}.runout.amplitude_1x_m", "sensor.{}.runout.phase_1x_rad"],
+    "sensor_runout_2x": ["sensor.{}.runout.amplitude_2x_m", "sensor.{}.runout.phase_2x_rad"],
+    "sensor_gain_offset": ["sensor.{}.gain", "sensor.{}.offset_m"],
+    "sensor_lag": ["sensor.{}.lag.delay_s", "sensor.{}.lag.cutoff_Hz"],
+    "tdb_drag_torque": ["tdb.{}.spin.drag_torque_N_m"],
+    "ribbon_dry_friction": ["tdb.{}.four_dof.dahl.slipping_threshold_N"],
+    "ribbon_cross_coupling": ["tdb.{}.four_dof.cross_coupled.cross_coupling"],
+}
+# ---------------------------------------------------------------------------------------------
+
+
+class BatteryError(Exception):
+    """A fit or the generator failed, or a file is missing: the run exits non-zero."""
+
+
+def split_line(line):
+    key, _, value = line.partition("=")
+    return key.strip(), value.strip()
+
+
+def normalise_keys(pairs):
+    """[(key, value)] -> [(normalised key, value)] by the mapping rule above."""
+    tables = {}
+    for key, value in pairs:
+        parts = key.split(".")
+        if parts[0] == "unbalance" and len(parts) >= 3:
+            t = tables.setdefault(parts[1], {"position": math.inf})
+            if parts[-1] == "position_m":
+                t["position"] = as_number(value, math.inf)
+    if len(tables) == 1:
+        rename = {name: "static" for name in tables}
+    else:
+        order = sorted(tables, key=lambda n: (tables[n]["position"], n))
+        rename = {name: f"couple_{k + 1}" for k, name in enumerate(order)}
+    out = []
+    for key, value in pairs:
+        parts = key.split(".")
+        if parts[0] == "unbalance" and len(parts) >= 3:
+            parts[1] = rename[parts[1]]
+        out.append((".".join(parts), value))
+    return out
+
+
+def as_number(text, default=None):
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return default
+
+
+def leaf(key):
+    return key.rsplit(".", 1)[-1]
+
+
+def group(key):
+    return key.rsplit(".", 1)[0]
+
+
+def effect_name_keys(name, items):
+    """The key paths an effect of the fit's library writes, from its name alone."""
+    family, _, item = name.partition(":")
+    patterns = EFFECT_NAME_KEYS.get(family, [])
+    keys = []
+    for p in patterns:
+        if "{}" not in p:
+            keys.append(p)
+        elif item:
+            keys.append(p.format(item))
+        else:
+            keys.extend(p.format(i) for i in items)
+    return keys  # already in normalised form (EFFECT_NAME_KEYS names the unbalance tables so)
+
+
+def touched_groups(keys, truth_groups):
+    """The truth's key groups that non-switch keys in `keys` touch."""
+    hit = set()
+    for k in keys:
+        if leaf(k) in SWITCH_LEAVES:
+            continue
+        for g, members in truth_groups.items():
+            if k in members:
+                hit.add(g)
+    return hit
+
+
+def wrap_angle(a):
+    return math.remainder(a, 2.0 * math.pi)
+
+
+def absolute_tolerance(key, controller_period_s):
+    lf = leaf(key)
+    if lf == "delay_s":
+        return 0.5 * controller_period_s
+    return ABSOLUTE_TOLERANCE.get(lf, DEFAULT_ABSOLUTE_TOLERANCE)
+
+
+def short(key):
+    """A key's table and leaf (`de.clearance_m`, `misalignment.x_m`) for the table."""
+    return ".".join(key.split(".")[-2:])
+
+
+def compare_value(key, fitted, true, declared, controller_period_s):
+    """(ok, text) for one key: the fitted value against the truth's change from declared."""
+    if leaf(key).endswith("_rad"):
+        err = abs(wrap_angle(fitted - true))
+        return err <= ANGLE_TOLERANCE_RAD, f"{short(key)} {fitted:.3g} vs {true:.3g}"
+    change = true - (declared if declared is not None else 0.0)
+    tol_abs = absolute_tolerance(key, controller_period_s)
+    if abs(change) > tol_abs:
+        ok = abs(fitted - true) <= VALUE_TOLERANCE * abs(change)
+        pct = 100.0 * (fitted - true) / abs(change)
+        text = f"{short(key)} {fitted:.4g} vs {true:.4g} ({pct:+.0f} % of change)"
+    else:
+        ok = abs(fitted - true) <= tol_abs
+        text = f"{short(key)} {fitted:.3g} vs {true:.3g} (abs tol {tol_abs:.2g})"
+    return ok, text
+
+
+class Declared:
+    """The config's keys as `ambdrop keys --json` reads them."""
+
+    def __init__(self, ambdrop, config):
+        out = subprocess.run([ambdrop, "keys", config, "--json"], capture_output=True, text=True)
+        if out.returncode != 0:
+            raise BatteryError(f"ambdrop keys {config} failed ({out.returncode}): {out.stderr}")
+        self.values = {k["path"]: k["value"] for k in json.loads(out.stdout)["keys"]}
+        self.tdbs = sorted({p.split(".")[1] for p in self.values if p.startswith("tdb.")})
+        self.ambs = sorted({p.split(".")[1] for p in self.values if p.startswith("amb.")})
+        self.sensors = sorted({p.split(".")[1] for p in self.values if p.startswith("sensor.")})
+        rate = self.values.get("controller.rate_Hz")
+        self.controller_period_s = 1.0 / rate if rate else 1e-4
+        # `keys` lists numbers only: the switches come from the TOML (and its `base =` chain).
+        self.toml = []
+        path = Path(config)
+        while path is not None and len(self.toml) < 8:
+            with open(path, "rb") as f:
+                doc = tomllib.load(f)
+            self.toml.append(doc)
+            base = doc.get("base")
+            path = (path.parent / base) if isinstance(base, str) else None
+
+    def switched_on(self, table):
+        """Whether the config declares `<table>.enabled = true` (the nearest file wins)."""
+        for doc in self.toml:
+            node = doc
+            for part in table.split("."):
+                node = node.get(part) if isinstance(node, dict) else None
+            if isinstance(node, dict) and "enabled" in node:
+                return node["enabled"] is True
+        return False
+
+    def items(self, family):
+        if family.startswith("amb"):
+            return self.ambs
+        if family.startswith("sensor"):
+            return self.sensors
+        return self.tdbs
+
+    def value(self, key, truth_keys):
+        """The declared value of a truth key, None when the truth switches its table on."""
+        table = group(key)
+        if truth_keys.get(table + ".enabled") == "true" and not self.switched_on(table):
+            return None
+        return self.values.get(key)
+
+
+def score(record, truth, fit, declared):
+    """One table row (a dict) for a record."""
+    row = {
+        "record": record,
+        "truth": truth["effect"],
+        "description": truth.get("description", ""),
+        "verdict": fit["verdict"],
+        "chosen": ", ".join(c["effect"] for c in fit["chosen"]) or "-",
+        "equivalent": ", ".join(fit.get("equivalent", [])),
+        "value": "",
+        "note": "",
+    }
+    before = fit["rms_before"]["overall_above_noise"]
+    after = fit["rms_after"]["overall_above_noise"]
+    cut = math.inf if after <= 0.0 else before / after
+    row["cut"] = cut
+    row["rms"] = f"{fit['rms_before']['overall']:.3g}->{fit['rms_after']['overall']:.3g}"
+    raw = [split_line(s) for s in truth.get("ambdrop_set", [])]
+    if not raw:
+        if truth["effect"] == "clean":
+            row["hit"] = fit["verdict"] == "no_effect_needed"
+            row["invented"] = bool(fit["chosen"])
+            row["note"] = "" if row["hit"] else "clean record not no_effect_needed"
+        else:
+            row["hit"] = fit["verdict"] == "unexplained"
+            row["invented"] = False
+            row["note"] = "" if row["hit"] else "outside the library but not unexplained"
+        return row
+    row["invented"] = False
+    truth_pairs = normalise_keys(raw)
+    truth_keys = dict(truth_pairs)
+    truth_groups = {}
+    for k, _ in truth_pairs:
+        if leaf(k) not in SWITCH_LEAVES:
+            truth_groups.setdefault(group(k), set()).add(k)
+    if not fit["chosen"]:
+        row["hit"] = False
+        row["note"] = f"nothing chosen ({fit['verdict']})"
+        return row
+    chosen_keys = []
+    chosen_values = {}
+    for c in fit["chosen"]:
+        pairs = normalise_keys([split_line(s) for s in c["set"]])
+        chosen_keys.append([k for k, _ in pairs])
+        chosen_values.update(dict(pairs))
+    first = touched_groups(chosen_keys[0], truth_groups)
+    covered = set(first)
+    for keys in chosen_keys[1:]:
+        covered |= touched_groups(keys, truth_groups)
+    for name in fit.get("equivalent", []):
+        keys = effect_name_keys(name, declared.items(name.partition(":")[0]))
+        covered |= touched_groups(keys, truth_groups)
+    named = bool(first) and covered == set(truth_groups)
+    notes = []
+    if not first:
+        notes.append("first chosen touches no truth key")
+    elif not named:
+        notes.append("not every truth group listed: missing " +
+                     ", ".join(sorted(set(truth_groups) - covered)))
+    values_ok = True
+    texts = []
+    for k, v in truth_pairs:
+        if leaf(k) in NOT_COMPARED_LEAVES or k not in chosen_values:
+            continue
+        t, f = as_number(v), as_number(chosen_values[k])
+        if t is None or f is None:
+            continue
+        ok, text = compare_value(k, f, t, declared.value(k, truth_keys),
+                                 declared.controller_period_s)
+        values_ok = values_ok and ok
+        text += "" if ok else " !"
+        if text not in texts:  # the same key on every AMB / sensor: once
+            texts.append(text)
+    if named and not texts:
+        values_ok = False
+        notes.append("no value to compare")
+    elif not values_ok:
+        notes.append("value off")
+    cut_ok = cut >= MIN_CUT
+    if not cut_ok:
+        notes.append(f"cut {cut:.3g}x < {MIN_CUT:g}x")
+    row["value"] = "; ".join(texts)
+    row["hit"] = named and values_ok and cut_ok
+    row["note"] = "; ".join(notes)
+    return row
+
+
+def run_fit(args, record_dir, blind_dir, fit_dir):
+    """Runs `ambdrop fit` on one blind record; returns the seconds it took."""
+    measured = blind_dir / args.record_file
+    if not measured.is_file():
+        raise BatteryError(f"{measured}: missing")
+    fit_dir.mkdir(parents=True, exist_ok=True)
+    cmd = [args.ambdrop, "fit", args.config, "--measured", str(measured), "--out",
+           str(fit_dir)] + args.fit_arg
+    start = time.monotonic()
+    with open(fit_dir / "fit.log", "w") as log:
+        log.write(" ".join(cmd) + "\n")
+        log.flush()
+        rc = subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT).returncode
+    seconds = time.monotonic() - start
+    (fit_dir / "seconds.txt").write_text(f"{seconds:.1f}\n")
+    if rc != 0:
+        raise BatteryError(f"{record_dir.name}: ambdrop fit exited {rc} (see {fit_dir}/fit.log)")
+    if not (fit_dir / "fit.json").is_file():
+        raise BatteryError(f"{record_dir.name}: no fit.json in {fit_dir}")
+    return seconds
+
+
+def fmt_cut(cut):
+    return "inf" if math.isinf(cut) else f"{cut:.3g}x"
+
+
+COLUMNS = ["record", "truth", "verdict", "first chosen", "value vs truth", "cut", "s", ""]
+
+
+def row_cells(r):
+    first = r["chosen"].split(", ")[0]
+    if r["chosen"].count(", "):
+        first += f" (+{r['chosen'].count(', ')})"
+    if r["equivalent"]:
+        first += f" [eq: {r['equivalent']}]"
+    value = r["value"] or "-"
+    return [r["record"], r["truth"], r["verdict"], first, value, fmt_cut(r["cut"]),
+            f"{r['seconds']:.0f}", "HIT" if r["hit"] else "miss"]
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("ambdrop")
+    p.add_argument("ambdrop_truth")
+    p.add_argument("rig")
+    p.add_argument("config")
+    p.add_argument("out")
+    p.add_argument("--jobs", type=int, default=1)
+    p.add_argument("--only", action="append", default=[])
+    p.add_argument("--record-file", default="record_si.csv")
+    p.add_argument("--markdown")
+    p.add_argument("--score-only", action="store_true")
+    p.add_argument("--fit-arg", action="append", default=[])
+    args = p.parse_args()
+    for f in (args.rig, args.config):
+        if not Path(f).is_file():
+            print(f"battery: {f}: missing", file=sys.stderr)
+            return 2
+    out = Path(args.out)
+    records = out / "records"
+    failures = []
+    try:
+        if not args.score_only:
+            for b in (args.ambdrop, args.ambdrop_truth):
+                if not os.access(b, os.X_OK):
+                    raise BatteryError(f"{b}: not an executable")
+            records.mkdir(parents=True, exist_ok=True)
+            gen = subprocess.run([args.ambdrop_truth, "--rig", args.rig, "--battery",
+                                  str(records), "--si"], capture_output=True, text=True)
+            if gen.returncode != 0:
+                raise BatteryError(f"ambdrop_truth --battery exited {gen.returncode}: "
+                                   f"{gen.stderr.strip()}")
+        index_file = records / "battery.json"
+        if not index_file.is_file():
+            raise BatteryError(f"{index_file}: missing")
+        plan = json.loads(index_file.read_text())
+        if args.only:
+            plan = [e for e in plan if e["record"] in args.only or
+                    e["record"].split("_", 1)[1].rsplit("_s", 1)[0] in args.only]
+            if not plan:
+                raise BatteryError(f"--only {args.only}: no such record or effect kind")
+        declared = Declared(args.ambdrop, args.config)
+    except BatteryError as e:
+        print(f"battery: {e}", file=sys.stderr)
+        return 1
+
+    seconds = {}
+    if not args.score_only:
+        print(f"{len(plan)} records, {args.jobs} at a time: {out}/fits/<record>/fit.json",
+              flush=True)
+        with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+            futures = {pool.submit(run_fit, args, records / e["record"], records / e["blind"],
+                                   out / "fits" / e["record"]): e["record"] for e in plan}
+            for fut in concurrent.futures.as_completed(futures):
+                name = futures[fut]
+                try:
+                    seconds[name] = fut.result()
+                    print(f"  fitted {name} in {seconds[name]:.0f} s", flush=True)
+                except BatteryError as e:
+                    failures.append(str(e))
+                    print(f"  FAILED {e}", flush=True)
+
+    rows = []
+    for e in plan:
+        name = e["record"]
+        truth_file = records / name / "truth.json"
+        fit_file = out / "fits" / name / "fit.json"
+        missing = [f for f in (truth_file, fit_file) if not f.is_file()]
+        if missing:
+            failures.append(f"{name}: missing " + ", ".join(map(str, missing)))
+            continue
+        row = score(name, json.loads(truth_file.read_text()), json.loads(fit_file.read_text()),
+                    declared)
+        if name not in seconds:
+            s = out / "fits" / name / "seconds.txt"
+            seconds[name] = float(s.read_text()) if s.is_file() else math.nan
+        row["seconds"] = seconds[name]
+        rows.append(row)
+
+    table = [row_cells(r) for r in rows]
+    widths = [max(len(str(c)) for c in col) for col in zip(COLUMNS, *table)] if table else []
+    for line in [COLUMNS] + table:
+        print("  ".join(str(c).ljust(w) for c, w in zip(line, widths)).rstrip())
+    right = sum(r["hit"] for r in rows)
+    invented = sum(r["invented"] for r in rows)
+    total = f"{right} of {len(rows)} right, {invented} invented"
+    print(total)
+    for r in rows:
+        if not r["hit"]:
+            print(f"  miss {r['record']}: {r['note']}; {r['rms']}")
+    if args.markdown:
+        md = ["| " + " | ".join(c or "result" for c in COLUMNS) + " |",
+              "|" + " --- |" * len(COLUMNS)]
+        for cells in table:
+            md.append("| " + " | ".join(str(c).replace("|", "/") for c in cells) + " |")
+        md.append("")
+        md.append(f"**{total}** (invented: an effect chosen on a clean record).")
+        md.append("")
+        for r in rows:
+            if not r["hit"]:
+                md.append(f"- miss `{r['record']}`: {r['note']}; overall {r['rms']}.")
+        Path(args.markdown).write_text("\n".join(md) + "\n")
+    if failures:
+        for f in failures:
+            print(f"battery: {f}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
