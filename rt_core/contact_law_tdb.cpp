@@ -116,9 +116,10 @@ void ContactLawTdb::Evaluate(const JournalMotion& j, const double* state, double
     ForceOnRotor(g, normal, -friction - p.friction.whirl_damping_N_s_per_m * g.whirl_speed_m_s,
                  &out->fx_N, &out->fy_N);
     out->torque_on_rotor_N_m = -friction * p.journal_radius_m;
-    // Without race masses the housing takes the whole contact force.
-    out->support_x_N = out->fx_N;
-    out->support_y_N = out->fy_N;
+    // Without race masses the housing takes the whole contact force: the reaction of the force
+    // on the rotor (TdbForce::support_x_N is the force passed to the housing, as on every kind).
+    out->support_x_N = -out->fx_N;
+    out->support_y_N = -out->fy_N;
   }
   out->normal_force_N = normal;
   out->tangential_force_N = friction;

@@ -43,6 +43,9 @@ TEST(ContactLaw, RibbonBranchAtTheBottom) {
   EXPECT_NEAR(f.fy_N, fn, 1e-9);  // pushes the journal up
   EXPECT_NEAR(f.fx_N, 0.0, 1e-12);
   EXPECT_EQ(f.torque_on_rotor_N_m, 0.0);
+  // and the housing down: the support force is the force passed to it, as on every TDB kind
+  EXPECT_NEAR(f.support_y_N, -fn, 1e-9);
+  EXPECT_EQ(f.support_x_N, -f.fx_N);
 }
 
 TEST(ContactLaw, CrushedRibbonBranchOnTheSide) {

@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "rt_core/tdb_common.hpp"
 #include "tools/fit/noise_floor.hpp"
 #include "tools/whirl_classifier.hpp"
 
@@ -64,7 +65,7 @@ Fall FallOf(const MeasuredRecord& r, const std::vector<double>& v, double trigge
 // The first time a TDB's surface reaches 95 % of the journal's surface speed after the trigger.
 double SpinUp(const MeasuredRecord& r, const std::vector<double>& race, double trigger_s,
               double journal_speed_rad_s, const TdbParams& t) {
-  const double ratio = t.journal_radius_m / (t.journal_radius_m + t.clearance_m);
+  const double ratio = t.journal_radius_m / InnerRaceRadius(t);
   for (std::size_t j = RowAt(r, trigger_s); j < race.size(); ++j) {
     if (std::isfinite(race[j]) && race[j] >= 0.95 * journal_speed_rad_s * ratio) {
       return r.time_s[j] - trigger_s;

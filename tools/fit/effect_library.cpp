@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <tuple>
 #include <utility>
 
@@ -106,7 +107,8 @@ Effect TdbMisalignment(const TdbParams& t) {
         "TDB {} centre offset from the magnetic centre (x, y; declared {:.4g}, {:.4g} m)", name,
         m.x_m, m.y_m);
   }
-  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
+  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce, Q::kTdbSupportForce,
+                   Q::kControllerCommand};
   e.probe = {0.5 * c, -0.5 * c};
   const std::string table = "tdb." + name + ".misalignment.";
   e.overrides = [table](const std::vector<double>& v) {
@@ -127,7 +129,8 @@ Effect TdbClearance(const TdbParams& t) {
   e.family = "tdb_clearance";
   e.description = fmt::format("radial clearance of TDB {} (declared {:.4g} m)", name, c);
   e.parameters = {{"clearance_m", 0.5 * c, 2.0 * c, {c, 1.3 * c, 0.8 * c}}};
-  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
+  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce, Q::kTdbSupportForce,
+                   Q::kControllerCommand};
   e.probe = {1.5 * c};
   e.overrides = [name](const std::vector<double>& v) {
     return std::vector<std::string>{Set("tdb." + name + ".clearance_m", v[0])};
@@ -150,7 +153,8 @@ Effect FrictionCoefficientOf(const std::vector<TdbParams>& tdbs, std::string nam
   e.family = "friction_coefficient";
   e.description = std::move(description);
   e.parameters = {{"coefficient", 0.01, 0.8, {mu, 0.5 * mu, std::min(0.8, 2.0 * mu)}}};
-  e.revealed_by = {Q::kDisplacement, Q::kTdbSpeed, Q::kTdbNormalForce, Q::kRotorSpeed};
+  e.revealed_by = {Q::kDisplacement, Q::kTdbSpeed,        Q::kTdbNormalForce,
+                   Q::kRotorSpeed,   Q::kTdbSupportForce, Q::kControllerCommand};
   e.probe = {mu < 0.4 ? 2.0 * mu : 0.5 * mu};
   e.overrides = [rubbing](const std::vector<double>& v) {
     std::vector<std::string> out;
@@ -207,7 +211,8 @@ Effect UnbalanceIn(std::vector<UnbalancePlane> planes, std::string name, std::st
   e.family = "unbalance";
   e.description = std::move(description);
   e.parameters = UnbalanceParameters();
-  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
+  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce, Q::kTdbSupportForce,
+                   Q::kControllerCommand};
   e.probe = {1e-3, 0.0};
   // A unit mass: the fitted size is its eccentricity, mass x eccentricity in one number.
   e.overrides = [planes](const std::vector<double>& v) {
@@ -260,7 +265,8 @@ Effect FluxDecayOf(std::vector<std::string> ambs, std::string name, std::string 
     std::erase_if(starts, [](double t) { return t < 1e-4 || t > 0.1; });
   }
   e.parameters = {{"time_constant_s", 1e-4, 0.1, starts}};
-  e.revealed_by = {Q::kDisplacement, Q::kCurrent, Q::kTdbNormalForce};
+  // Not the controller's command: it goes on commanding whatever the coils do.
+  e.revealed_by = {Q::kDisplacement, Q::kCurrent, Q::kTdbNormalForce, Q::kTdbSupportForce};
   e.probe = {2e-2};  // long: the declared model's loss is instant
   e.overrides = [ambs](const std::vector<double>& v) {
     std::vector<std::string> out;
@@ -323,7 +329,8 @@ Effect SensorRunoutHarmonic(const SensorParams& s, double clearance, int order) 
        Distinct({a0, 0.0, 0.02 * clearance})},
       {"phase_" + x + "_rad", -kPi, kPi, Distinct({p0, 0.0, 0.5 * kPi, kPi, -0.5 * kPi}), true}};
   if (a0 > 0.0) e.description += fmt::format(" (declared {:.4g} m)", a0);
-  e.revealed_by = {Q::kDisplacement};
+  // The controller acts on the readings: its command shows them too.
+  e.revealed_by = {Q::kDisplacement, Q::kControllerCommand};
   e.probe = {0.1 * clearance, 0.0};
   const std::string table = "sensor." + name + ".runout.";
   const std::string other = order == 1 ? "2x" : "1x";
@@ -347,7 +354,8 @@ Effect SensorGainOffset(const SensorParams& s, double clearance) {
   e.description = fmt::format("scale error and offset of sensor {}", name);
   e.parameters = {{"gain", 0.7, 1.3, {s.gain}},
                   {"offset_m", -0.5 * clearance, 0.5 * clearance, {s.offset_m}}};
-  e.revealed_by = {Q::kDisplacement};
+  // The controller acts on the readings: its command shows them too.
+  e.revealed_by = {Q::kDisplacement, Q::kControllerCommand};
   e.probe = {1.2 * s.gain, s.offset_m + 0.1 * clearance};
   e.overrides = [name](const std::vector<double>& v) {
     return std::vector<std::string>{Set("sensor." + name + ".gain", v[0]),
@@ -378,7 +386,8 @@ Effect SensorLag(const SensorParams& s, double sample_s) {
   if (s.lag.enabled) {
     e.description += fmt::format(" (declared {:.4g} s, {:.4g} Hz)", s.lag.delay_s, s.lag.cutoff_Hz);
   }
-  e.revealed_by = {Q::kDisplacement};
+  // The controller acts on the readings: its command shows them too.
+  e.revealed_by = {Q::kDisplacement, Q::kControllerCommand};
   // At the delay's bound: a lag shows only weakly in a drop.
   e.probe = {std::floor(longest / sample_s) * sample_s, 5e-4};
   // The filter's time constant becomes its cutoff; below 0.1 us it is no filter (0 Hz).
@@ -400,7 +409,8 @@ Effect TdbDrag(const TdbParams& t) {
   // A size from 0 over decades: the chaos guard's nudge is a thousandth of the value, not of the
   // 5 N m range (that nudge, 5 mN m, was five times a fitted 0.92 mN m drag).
   e.parameters = {{"drag_torque_N_m", 0.0, 5.0, {0.0, 0.05, 0.5}, false, 0.0, true}};
-  e.revealed_by = {Q::kTdbSpeed, Q::kDisplacement, Q::kRotorSpeed};
+  e.revealed_by = {Q::kTdbSpeed, Q::kDisplacement, Q::kRotorSpeed, Q::kTdbSupportForce,
+                   Q::kControllerCommand};
   e.probe = {2.0};
   e.overrides = [name](const std::vector<double>& v) {
     return std::vector<std::string>{
@@ -409,24 +419,49 @@ Effect TdbDrag(const TdbParams& t) {
   return e;
 }
 
+// A TDB's declared linear ribbon: the 4-DOF TDB's Kelvin-Voigt one, or the contact-law TDB's
+// bilinear law before crushing (keq, ceq). The ribbon laws replace it in its table.
+struct LinearRibbon {
+  std::string table;  ///< "tdb.NAME.four_dof." or "tdb.NAME.contact_law."
+  double stiffness_N_per_m = 0.0;
+  double damping_N_s_per_m = 0.0;
+};
+
+// The linear ribbon a ribbon law could replace, if the TDB has one: a 4-DOF TDB with a
+// Kelvin-Voigt ribbon, or a contact-law TDB with its bilinear law. In series with the contact
+// the ribbon's race is massless, so its damping must be positive (rt_core/contact_law_tdb.hpp).
+std::optional<LinearRibbon> LinearRibbonOf(const TdbParams& t) {
+  if (t.model == TdbModelKind::kFourDof && t.four_dof.ribbon == RibbonLaw::kKelvinVoigt) {
+    return LinearRibbon{"tdb." + t.name + ".four_dof.", t.four_dof.kelvin_voigt.stiffness_N_per_m,
+                        t.four_dof.kelvin_voigt.damping_N_s_per_m};
+  }
+  const ContactLawParams& c = t.contact_law;
+  if (t.model == TdbModelKind::kContactLaw && c.ribbon == ContactLawRibbon::kBilinear &&
+      c.ribbon_damping_N_s_per_m > 0.0) {
+    return LinearRibbon{"tdb." + t.name + ".contact_law.", c.ribbon_stiffness_N_per_m,
+                        c.ribbon_damping_N_s_per_m};
+  }
+  return std::nullopt;
+}
+
 // A Kelvin-Voigt ribbon that is really a dry-friction one: the generalized Dahl law in its
 // place, its slipping threshold fitted. The rest is tied to what is declared: the slipping
 // stiffness is the Kelvin-Voigt stiffness, and beta and the hardening envelopes are the seed-000
 // rig's (configs/jarroux2019_industrial_model3.toml), which carry a rig's weight share.
-Effect RibbonDryFriction(const TdbParams& t) {
+Effect RibbonDryFriction(const TdbParams& t, const LinearRibbon& kv) {
   const std::string name = t.name;
   Effect e;
   e.name = "ribbon_dry_friction:" + name;
   e.family = "ribbon_dry_friction";
   e.description = fmt::format(
       "dry friction in TDB {}'s ribbon: the generalized Dahl law (Jarroux 2019 Eq. (1)-(3)) in "
-      "place of Kelvin-Voigt, slipping threshold fitted",
+      "place of its linear ribbon, slipping threshold fitted",
       name);
   e.parameters = {{"slipping_threshold_N", 0.0, 5000.0, {200.0, 1000.0, 2500.0}}};
-  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
+  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce, Q::kTdbSupportForce,
+                   Q::kControllerCommand};
   e.probe = {1000.0};
-  const KelvinVoigtRibbonParams kv = t.four_dof.kelvin_voigt;
-  const std::string table = "tdb." + name + ".four_dof.";
+  const std::string table = kv.table;
   e.overrides = [table, kv](const std::vector<double>& v) {
     const std::string dahl = table + "dahl.";
     return std::vector<std::string>{SetText(table + "ribbon", "dahl"),
@@ -444,7 +479,7 @@ Effect RibbonDryFriction(const TdbParams& t) {
 
 // A ribbon whose stiffness is cross-coupled so as to oppose the outer race's whirl (Jarroux
 // 2016, seed 001, Eq. (1)); its stiffness and damping are the declared Kelvin-Voigt ones.
-Effect RibbonCrossCoupling(const TdbParams& t) {
+Effect RibbonCrossCoupling(const TdbParams& t, const LinearRibbon& kv) {
   const std::string name = t.name;
   Effect e;
   e.name = "ribbon_cross_coupling:" + name;
@@ -454,10 +489,10 @@ Effect RibbonCrossCoupling(const TdbParams& t) {
       "Eq. (1)), eta fitted",
       name);
   e.parameters = {{"cross_coupling", 0.0, 2.0, {0.1, 0.5, 1.0}}};
-  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce};
+  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce, Q::kTdbSupportForce,
+                   Q::kControllerCommand};
   e.probe = {1.0};
-  const KelvinVoigtRibbonParams kv = t.four_dof.kelvin_voigt;
-  const std::string table = "tdb." + name + ".four_dof.";
+  const std::string table = kv.table;
   e.overrides = [table, kv](const std::vector<double>& v) {
     const std::string cc = table + "cross_coupled.";
     return std::vector<std::string>{SetText(table + "ribbon", "cross_coupled"),
@@ -491,7 +526,8 @@ ConfigKey KeyOr(const std::vector<ConfigKey>& keys, const std::string& path, dou
 void AddRaceSpinEffects(const LoadedConfig& config, std::vector<Effect>* effects) {
   const ModelParams& declared = config.params;
   std::vector<ConfigKey> inertias, dampings, drags;
-  const std::vector<Q> spin_shows = {Q::kTdbSpeed, Q::kDisplacement, Q::kRotorSpeed};
+  const std::vector<Q> spin_shows = {Q::kTdbSpeed, Q::kDisplacement, Q::kRotorSpeed,
+                                     Q::kTdbSupportForce, Q::kControllerCommand};
   for (const TdbParams& t : declared.tdbs) {
     if (!HasDragTorque(t)) continue;
     const std::string table = "tdb." + t.name + ".spin.";
@@ -575,11 +611,12 @@ std::vector<Effect> EffectLibrary(const LoadedConfig& config) {
     if (HasDragTorque(t)) effects.push_back(TdbDrag(t));
   }
   AddRaceSpinEffects(config, &effects);
-  // Ribbon laws apply to 4-DOF TDBs whose ribbon is declared Kelvin-Voigt.
+  // Ribbon laws replace a declared linear ribbon (issue 15: the contact-law TDB's too).
   for (const TdbParams& t : declared.tdbs) {
-    if (t.model != TdbModelKind::kFourDof || t.four_dof.ribbon != RibbonLaw::kKelvinVoigt) continue;
-    effects.push_back(RibbonDryFriction(t));
-    effects.push_back(RibbonCrossCoupling(t));
+    const std::optional<LinearRibbon> ribbon = LinearRibbonOf(t);
+    if (!ribbon) continue;
+    effects.push_back(RibbonDryFriction(t, *ribbon));
+    effects.push_back(RibbonCrossCoupling(t, *ribbon));
   }
   return effects;
 }

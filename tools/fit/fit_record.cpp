@@ -40,6 +40,16 @@ std::unique_ptr<FitResult> FitRecord(const ConfigVariants& config, const Measure
   fit->residual_before = ComputeResiduals(declared, m, record, fit->before, cost.compare_from_s());
   fit->residual_after = ComputeResiduals(declared, m, record, fit->after, cost.compare_from_s());
   fit->residual_before.overall = fit->selection.rms_before;
+  const auto share = [&](const SimulatedRecord& sim, ResidualReport* report) {
+    const std::vector<double> sse = cost.ChannelSse(cost.Residual(sim));
+    double total = 0.0;
+    for (const double v : sse) total += v;
+    for (std::size_t c = 0; c < sse.size() && c < report->channels.size(); ++c) {
+      report->channels[c].cost_share = total > 0.0 ? sse[c] / total : 0.0;
+    }
+  };
+  share(fit->before, &fit->residual_before);
+  share(fit->after, &fit->residual_after);
   fit->residual_after.overall = OverallRms(cost, cost.Residual(fit->after).squaredNorm());
   return fit;
 }

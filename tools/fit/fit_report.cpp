@@ -24,6 +24,7 @@ void Residuals(JsonWriter& json, const ResidualReport& r, double noise_floor) {
     json.Key("impact").Number(c.rms_impact);
     json.Key("settled").Number(c.rms_settled);
     json.Key("samples").Integer(static_cast<std::int64_t>(c.samples));
+    if (std::isfinite(c.cost_share)) json.Key("cost_share").Number(c.cost_share);
     json.EndObject();
   }
   json.EndObject();

@@ -266,6 +266,14 @@ Eigen::VectorXd RecordCost::Residual(const SimulatedRecord& sim) const {
   return r;
 }
 
+std::vector<double> RecordCost::ChannelSse(const Eigen::VectorXd& residual) const {
+  std::vector<double> sse(measurement_.channels.size(), 0.0);
+  Eigen::Index i = 0;
+  for (const Sample& s : samples_) sse[s.channel] += residual(i) * residual(i), ++i;
+  for (const Block& b : blocks_) sse[b.channel] += residual(i) * residual(i), ++i;
+  return sse;
+}
+
 Eigen::VectorXd RecordCost::Residual(const ModelParams& params) const {
   return Residual(Simulate(params));
 }

@@ -49,6 +49,9 @@ class RecordCost {
   /// The same for a run already made.
   Eigen::VectorXd Residual(const SimulatedRecord& sim) const;
   SimulatedRecord Simulate(const ModelParams& params) const;
+  /// A residual vector's squared norm split by measurement channel (0 for one not compared):
+  /// which channels the overall residual comes from.
+  std::vector<double> ChannelSse(const Eigen::VectorXd& residual) const;
 
   /// The overall relative RMS a perfect model would leave: each channel's measurement noise
   /// (tools/fit/noise_floor.hpp, over its compared samples) through the cost's weights.

@@ -2,6 +2,7 @@
 // Step b of `ambdrop fit`: how far the model's prediction is from the record, per channel, per
 // phase of the drop, and overall. Channels have different units, so the overall figure is the
 // RMS of each channel's residual over that channel's measured range (a relative error).
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,9 @@ struct ChannelResidual {
   double rms_impact = 0.0;
   double rms_settled = 0.0;
   std::size_t samples = 0;
+  /// The channel's share of the fit's cost (RecordCost::ChannelSse over the total): which
+  /// channels the overall residual comes from. NaN where not set.
+  double cost_share = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct ResidualReport {

@@ -8,7 +8,8 @@
 #include <unsupported/Eigen/LevenbergMarquardt>
 
 #include "controller_if/offline_run.hpp"
-#include "rt_core/model.hpp"
+#include "rt_core//model.hpp"
+#include "rt_core/tdb_common.hpp"
 
 namespace ambdrop {
 namespace {
@@ -132,7 +133,7 @@ std::map<std::string, double> TdbSpinUpTimes(const ModelParams& params) {
     if (o.time_s < params.trigger.time_s) return;
     for (std::size_t i = 0; i < params.tdbs.size(); ++i) {
       const TdbParams& t = params.tdbs[i];
-      const double race_surface = o.tdb[i].tdb_spin_rad_s * (t.journal_radius_m + t.clearance_m);
+      const double race_surface = o.tdb[i].tdb_spin_rad_s * InnerRaceRadius(t);
       const double journal_surface = o.spin_speed_rad_s * t.journal_radius_m;
       if (!spinup.count(t.name) && race_surface >= 0.95 * journal_surface) {
         spinup[t.name] = o.time_s - params.trigger.time_s;
