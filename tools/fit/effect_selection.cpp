@@ -249,7 +249,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
     for (const CandidateScore& c : singles) {
       if (!c.tried || !std::isfinite(c.fit.sse) || c.family == family) continue;
       if (c.rms_after <= s.rms_after * rules.equivalent_margin) {
-        s.equivalent.push_back(c.name);
+        s.equivalent.push_back({c.name, c.family, c.fit, c.rms_after});
         alike += fmt::format("{}{} ({:.3g})", alike.empty() ? "" : ", ", c.name, c.rms_after);
       }
     }

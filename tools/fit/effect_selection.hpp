@@ -62,6 +62,15 @@ struct CandidateScore {
   bool accepted = false;
 };
 
+/// An explanation as good as the chosen one (SelectionRules::equivalent_margin): the record
+/// cannot tell it from the chosen one, so it is reported with its own fit, never dropped.
+struct EquivalentEffect {
+  std::string name;
+  std::string family;
+  EffectFit fit;           ///< its parameters, as fitted alone
+  double rms_after = 0.0;  ///< overall relative RMS with it
+};
+
 struct Selection {
   double rms_before = 0.0;  ///< overall relative RMS of the declared model
   double bic_before = 0.0;
@@ -84,7 +93,7 @@ struct Selection {
   /// Single effects of other families than the first chosen that fit the record as well as
   /// the chosen ones (residual within SelectionRules::equivalent_margin of theirs): the record
   /// cannot tell them apart, and the verdict says so.
-  std::vector<std::string> equivalent;
+  std::vector<EquivalentEffect> equivalent;
   EffectFit chosen_fit;  ///< their parameters
   double rms_after = 0.0;
   std::string verdict;  ///< explained | partly_explained | no_effect_needed | unexplained

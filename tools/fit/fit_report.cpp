@@ -50,6 +50,13 @@ bool Suggested(const ResidualReport& before, const std::string& family) {
   return false;
 }
 
+const Effect* Find(const std::vector<Effect>& library, const std::string& name) {
+  for (const Effect& e : library) {
+    if (e.name == name) return &e;
+  }
+  return nullptr;
+}
+
 void Parameters(JsonWriter& json, const EffectFit& fit, const std::string& effect) {
   json.BeginObject();
   for (const ParameterEstimate& p : fit.parameters) {
@@ -68,7 +75,8 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   const Selection& s = *o.selection;
   JsonWriter json;
   json.BeginObject();
-  // 2: a chosen effect's "set" (its --set lines) replaced its TOML text "config".
+  // 2: a chosen effect's "set" (its --set lines) replaced its TOML text "config", and
+  // "equivalent" lists objects (effect, family, rms_after, parameters, set), not names.
   json.Key("schema_version").Integer(2);
   json.Key("config").String(o.config_path);
   json.Key("measured").String(o.measured_path);
@@ -123,8 +131,22 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   }
   json.EndArray();
 
-  json.Key("equivalent").BeginArray(true);
-  for (const std::string& e : s.equivalent) json.String(e);
+  // Each look-alike with its own fit, side by side with the chosen one.
+  json.Key("equivalent").BeginArray();
+  for (const EquivalentEffect& e : s.equivalent) {
+    json.BeginObject();
+    json.Key("effect").String(e.name);
+    json.Key("family").String(e.family);
+    json.Key("rms_after").Number(e.rms_after);
+    json.Key("parameters");
+    Parameters(json, e.fit, e.name);
+    json.Key("set").BeginArray();
+    if (const Effect* effect = Find(*o.library, e.name); effect && !e.fit.values.empty()) {
+      for (const std::string& line : effect->overrides(e.fit.values.front())) json.String(line);
+    }
+    json.EndArray();
+    json.EndObject();
+  }
   json.EndArray();
 
   json.Key("candidates").BeginArray();
@@ -215,6 +237,22 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
       }
       md += "  ```\n";
     }
+    md += "\n";
+  }
+  if (!s.equivalent.empty()) {
+    // Side by side with the chosen one: the record does not decide between them.
+    md += "## Explanations the record cannot tell apart\n\n";
+    md += "| effect | parameters | overall RMS after |\n|---|---|---|\n";
+    const auto row = [&](const std::string& name, const EffectFit& fit, double rms) {
+      std::string params;
+      for (const ParameterEstimate& p : fit.parameters) {
+        if (p.effect != name) continue;
+        params += fmt::format("{}{} = {:.4g}", params.empty() ? "" : ", ", p.name, p.value);
+      }
+      md += fmt::format("| {} | {} | {:.4g} |\n", name, params, rms);
+    };
+    if (!o.chosen.empty()) row(o.chosen.front()->name, s.chosen_fit, s.rms_after);
+    for (const EquivalentEffect& e : s.equivalent) row(e.name, e.fit, e.rms_after);
     md += "\n";
   }
   if (!o.before.signatures.empty()) {

@@ -269,6 +269,11 @@ class Declared:
         return self.values.get(key)
 
 
+def equivalent_names(fit):
+    """The look-alikes' names: schema 2 lists objects, older fit.json names."""
+    return [e["effect"] if isinstance(e, dict) else e for e in fit.get("equivalent", [])]
+
+
 def score(record, truth, fit, declared):
     """One table row (a dict) for a record."""
     row = {
@@ -277,7 +282,7 @@ def score(record, truth, fit, declared):
         "description": truth.get("description", ""),
         "verdict": fit["verdict"],
         "chosen": ", ".join(c["effect"] for c in fit["chosen"]) or "-",
-        "equivalent": ", ".join(fit.get("equivalent", [])),
+        "equivalent": ", ".join(equivalent_names(fit)),
         "value": "",
         "note": "",
     }
@@ -318,8 +323,11 @@ def score(record, truth, fit, declared):
     covered = set(first)
     for keys in chosen_keys[1:]:
         covered |= touched_groups(keys, truth_groups)
-    for name in fit.get("equivalent", []):
-        keys = effect_name_keys(name, declared.items(name.partition(":")[0]))
+    for e in fit.get("equivalent", []):
+        if isinstance(e, dict):  # fit.json schema 2: each look-alike with its set lines
+            keys = [k for k, _ in normalise_keys([split_line(x) for x in e["set"]])]
+        else:
+            keys = effect_name_keys(e, declared.items(e.partition(":")[0]))
         covered |= touched_groups(keys, truth_groups)
     named = bool(first) and covered == set(truth_groups)
     notes = []
