@@ -75,9 +75,14 @@ struct Selection {
   double rms_before = 0.0;  ///< overall relative RMS of the declared model
   double bic_before = 0.0;
   double noise_floor = 0.0;  ///< overall relative RMS a perfect model would leave
-  /// How much the declared model's own prediction moves when its step is halved: the drop's
-  /// sensitivity (chaos after impacts, the start state) that no effect can fit away.
+  /// How much the declared model's own prediction moves when its step is halved, or under
+  /// perturbations the record cannot resolve (the larger): the drop's sensitivity (chaos after
+  /// impacts, the start state) that no effect can fit away.
   double model_floor = 0.0;
+  double step_sensitivity = 0.0;  ///< the step-halving part of model_floor
+  /// The other part: how far the prediction moves under perturbations below the record's noise
+  /// (a runout of a third of the displacement noise on each sensor): a bistable or chaotic drop.
+  double start_sensitivity = 0.0;
   /// The same for the model with the chosen effects (0 with none), or, if larger, how far its
   /// prediction moves when a fitted parameter moves by a thousandth of its range: an effect can
   /// make the drop chaotic where the declared model was not. The verdict on what is left takes

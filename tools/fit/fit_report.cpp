@@ -84,6 +84,8 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   json.Key("reason").String(s.reason);
   json.Key("noise_floor").Number(s.noise_floor);
   json.Key("model_floor").Number(s.model_floor);
+  json.Key("step_sensitivity").Number(s.step_sensitivity);
+  json.Key("start_sensitivity").Number(s.start_sensitivity);
   json.Key("model_floor_after").Number(s.model_floor_after);
   json.Key("agreement_limit").Number(s.limit);
   json.Key("agreement_limit_after").Number(s.limit_after);
