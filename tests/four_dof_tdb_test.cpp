@@ -379,8 +379,9 @@ TEST(FourDofTdb, HousingContactSwitchedOffLetsTheOuterRaceTravelOn) {
       EXPECT_LT(-s[S::kOuterY], 0.146e-3 + 1e-7);
       EXPECT_GT(housing_y, 100.0);  // the housing pushes up on the race
     } else {
-      // On the ribbon alone: at its static deflection, 0.18 mm, well beyond the clearance.
-      EXPECT_NEAR(-s[S::kOuterY], 900.0 / 5e6, 1e-8);
+      // On the ribbon alone: at its static deflection, 0.18 mm (settled to 0.1 %), well beyond
+      // the clearance.
+      EXPECT_NEAR(-s[S::kOuterY], 900.0 / 5e6, 1e-3 * 900.0 / 5e6);
       EXPECT_NEAR(housing_y, 0.0, 1e-6);
     }
   }
