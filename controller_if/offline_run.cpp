@@ -12,11 +12,45 @@
 #include "controller_if/power_state.hpp"
 #include "controller_if/sensor_emulator.hpp"
 #include "controller_if/state_dump.hpp"
+#include "rt_core/amb_force.hpp"
+#include "rt_core/power_loss_drive.hpp"
 
 namespace ambdrop {
+namespace {
+
+/// The row's currents: `command_A` as commanded, the coils' from the input the step applies
+/// (its force scale is the square of the uniform laws' current fraction, ReportedCoilCurrent).
+AmbCurrents RowCurrents(const Model& model,
+                        const std::array<std::array<double, 2>, kMaxAmbs>& command_A,
+                        const ControlInput& input) noexcept {
+  AmbCurrents c;
+  c.command_A = command_A;
+  for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+    for (int axis = 0; axis < 2; ++axis) {
+      const AmbDrive& drive = input.amb[a];
+      c.coil_A[a][axis] = ReportedCoilCurrent(
+          UnpoweredDrive{LimitedCurrent(model.params.ambs[a], drive.current_A[axis]),
+                         drive.force_scale[axis], drive.bias_scale[axis]});
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
 OfflineRunResult RunOffline(const Model& model,
                             const std::function<void(const Observation&)>& on_output,
                             const std::function<void(double)>& on_progress, RunRecorder* recorder) {
+  OfflineOutput with_currents;
+  if (on_output) {
+    with_currents = [&on_output](const Observation& o, const AmbCurrents&) { on_output(o); };
+  }
+  return RunOfflineWithCurrents(model, with_currents, on_progress, recorder);
+}
+
+OfflineRunResult RunOfflineWithCurrents(const Model& model, const OfflineOutput& on_output,
+                                        const std::function<void(double)>& on_progress,
+                                        RunRecorder* recorder) {
   const double dt = model.params.simulation.step_s;
   const std::int64_t substeps =
       model.params.controller.kind == ControllerKind::kNone ? 1 : ControllerSubsteps(model);
@@ -42,6 +76,9 @@ OfflineRunResult RunOffline(const Model& model,
   for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
     start.loop_current_A[a] = input.amb[a].current_A;
   }
+  // What the controller or the profile commands; PowerState overrides an unpowered axis's
+  // current in `input`, so the command is kept apart.
+  std::array<std::array<double, 2>, kMaxAmbs> command_A = start.loop_current_A;
   if (model.trigger_step == 0) apply_power(failure, 0);
   power.Fill(0, &input);
 
@@ -70,10 +107,18 @@ OfflineRunResult RunOffline(const Model& model,
   const std::int64_t progress_every = std::max<std::int64_t>(1, model.total_steps / 200);
   Observation obs;
   SensorReadings readings;
+  // An output row waits for the currents applied from its time on, known at the next step.
+  Observation row;
+  bool row_pending = false;
+  const auto emit_row = [&] {
+    if (!row_pending) return;
+    row_pending = false;
+    on_output(row, RowCurrents(model, command_A, input));
+  };
   if (on_output || recorder != nullptr) {
-    sim.Observe(state, &obs);
-    if (on_output) on_output(obs);
-    if (recorder != nullptr) recorder->OnState(state, obs);
+    sim.Observe(state, &row);
+    row_pending = static_cast<bool>(on_output);
+    if (recorder != nullptr) recorder->OnState(state, row);
   }
   while (state.step_index < model.total_steps) {
     const std::int64_t k = state.step_index;
@@ -87,15 +132,20 @@ OfflineRunResult RunOffline(const Model& model,
         sensors.Sample(obs, &readings);
         if (recorder != nullptr) recorder->OnSensors(RecordedSensors{k, obs.time_s, readings});
         controller->Update(readings, &input);
+        for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+          command_A[a] = input.amb[a].current_A;
+        }
         record_currents(k);
       }
     } else {
       for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
         input.amb[a].current_A = CurrentAt(model.params.ambs[a].current_profile, k * dt);
+        command_A[a] = input.amb[a].current_A;
       }
       record_currents(k);
     }
     power.Fill(k, &input);
+    emit_row();
     const StepStatus status = sim.Step(&state, input);
     if (status != StepStatus::kOk) {
       result.status = status;
@@ -103,13 +153,18 @@ OfflineRunResult RunOffline(const Model& model,
       break;
     }
     if ((on_output || recorder != nullptr) && state.step_index % output_every == 0) {
-      sim.Observe(state, &obs);
-      if (on_output) on_output(obs);
-      if (recorder != nullptr) recorder->OnState(state, obs);
+      sim.Observe(state, &row);
+      row_pending = static_cast<bool>(on_output);
+      if (recorder != nullptr) recorder->OnState(state, row);
     }
     if (on_progress && state.step_index % progress_every == 0) {
       on_progress(static_cast<double>(state.step_index) / static_cast<double>(model.total_steps));
     }
+  }
+  // The last row: no step follows; its coil currents are those of the power state at its time.
+  if (row_pending) {
+    power.Fill(state.step_index, &input);
+    emit_row();
   }
   result.steps = state.step_index;
   result.final_state = state;

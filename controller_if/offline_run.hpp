@@ -16,6 +16,11 @@ struct OfflineRunResult {
   std::string failure_message;  ///< with a state dump when status != kOk
 };
 
+/// Called at every output row with the state's observation and the AMB currents applied from
+/// the row's time on (over the step that starts there; at the last row, the commands of the step
+/// before and the coil currents at that time).
+using OfflineOutput = std::function<void(const Observation&, const AmbCurrents&)>;
+
 /// Runs a model offline on the virtual clock: scheduled trigger, AMB currents from the
 /// configured profiles, an observation every output interval (and at t = 0) passed to
 /// `on_output`. Stops early, with a message and a state dump, if the simulation diverges.
@@ -24,5 +29,10 @@ OfflineRunResult RunOffline(const Model& model,
                             const std::function<void(const Observation&)>& on_output,
                             const std::function<void(double fraction_done)>& on_progress = {},
                             RunRecorder* recorder = nullptr);
+/// The same, with the AMB currents of each output row.
+OfflineRunResult RunOfflineWithCurrents(
+    const Model& model, const OfflineOutput& on_output,
+    const std::function<void(double fraction_done)>& on_progress = {},
+    RunRecorder* recorder = nullptr);
 
 }  // namespace ambdrop

@@ -52,7 +52,8 @@ void SensorEmulator::Sample(const Observation& obs, SensorReadings* out) noexcep
     }
     for (int axis = 0; axis < 2; ++axis) {
       Channel& c = channels_[i][axis];
-      double v = p.gain * (obs.sensor_xy_m[i][axis] + runout[axis]) + p.offset_m;
+      double v =
+          p.AxisGain(axis) * (obs.sensor_xy_m[i][axis] + runout[axis]) + p.AxisOffset_m(axis);
       // Transport delay.
       if (c.delay_samples > 0) {
         if (!c.primed) c.delay_line.fill(v);

@@ -100,19 +100,43 @@ void ReadCommon(const TableReader& table, const AxialRange& position, AmbParams*
 
 ElectromagnetParams ReadElectromagnet(const TableReader& amb) {
   const TableReader table = amb.Table("electromagnet");
-  table.AllowOnly({"pole_area_m2", "turns", "nominal_gap_m", "bias_current_A",
-                   "pole_half_angle_rad", "saturation"});
+  table.AllowOnly({"constant_N_m2_per_A2", "pole_area_m2", "turns", "nominal_gap_m",
+                   "bias_current_A", "pole_half_angle_rad", "saturation"});
   ElectromagnetParams e;
-  e.pole_area_m2 = table.Number("pole_area_m2", Positive());
-  e.turns = table.Number("turns", Positive());
+  // k either as a rig sheet gives it or from the geometry it comes from, never both.
+  const bool direct = table.Has("constant_N_m2_per_A2");
+  if (direct) {
+    for (const std::string_view key : {"pole_area_m2", "turns", "pole_half_angle_rad"}) {
+      table.Reject(key, fmt::format("no {} next to constant_N_m2_per_A2 (give k directly, or "
+                                    "turns, pole_area_m2 and pole_half_angle_rad that make it)",
+                                    key));
+    }
+    e.constant_N_m2_per_A2 = table.Number("constant_N_m2_per_A2", Positive());
+  } else {
+    e.pole_area_m2 = table.Number("pole_area_m2", Positive());
+    e.turns = table.Number("turns", Positive());
+  }
   e.nominal_gap_m = table.Number("nominal_gap_m", Positive());
   e.bias_current_A = table.Number("bias_current_A", Positive());
-  e.pole_half_angle_rad = table.Number(
-      "pole_half_angle_rad", InHalfOpenRange(0.0, 1.5707963267948966), e.pole_half_angle_rad);
+  if (!direct) {
+    e.pole_half_angle_rad = table.Number(
+        "pole_half_angle_rad", InHalfOpenRange(0.0, 1.5707963267948966), e.pole_half_angle_rad);
+  }
   if (const std::optional<TableReader> saturation = table.OptionalTable("saturation")) {
     saturation->AllowOnly({"enabled", "flux_density_T"});
     e.saturation_enabled = saturation->Bool("enabled", false);
-    e.saturation_flux_density_T = saturation->Number("flux_density_T", Positive());
+    // The flux density caps the force through the pole face, B^2 A cos(alpha) / mu0: without
+    // the geometry there is no face to cap it.
+    if (direct && e.saturation_enabled) {
+      saturation->Fail("enabled",
+                       "false with constant_N_m2_per_A2 (saturation needs the pole geometry: give "
+                       "turns, pole_area_m2 and pole_half_angle_rad instead of k)",
+                       "true");
+    }
+    // A disabled table does not demand its number; given, it is still checked.
+    e.saturation_flux_density_T = e.saturation_enabled
+                                      ? saturation->Number("flux_density_T", Positive())
+                                      : saturation->Number("flux_density_T", Positive(), 0.0);
   }
   return e;
 }

@@ -70,9 +70,13 @@ BearingSupportParams ReadSupport(const TableReader& parent) {
   if (!table) return params;
   table->AllowOnly({"enabled", "stiffness_N_per_m", "damping_N_s_per_m", "outer_race_mass_kg"});
   params.enabled = table->Bool("enabled", params.enabled);
-  params.stiffness_N_per_m = table->Number("stiffness_N_per_m", Positive());
-  params.damping_N_s_per_m = table->Number("damping_N_s_per_m", NonNegative());
-  params.outer_race_mass_kg = table->Number("outer_race_mass_kg", Positive());
+  // A disabled support does not demand its numbers; given, they are still checked.
+  const auto number = [&](std::string_view key, const NumberRule& rule) {
+    return params.enabled ? table->Number(key, rule) : table->Number(key, rule, 0.0);
+  };
+  params.stiffness_N_per_m = number("stiffness_N_per_m", Positive());
+  params.damping_N_s_per_m = number("damping_N_s_per_m", NonNegative());
+  params.outer_race_mass_kg = number("outer_race_mass_kg", Positive());
   return params;
 }
 

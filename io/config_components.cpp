@@ -63,18 +63,32 @@ namespace {
 // A sensor plane and its error models, each a switch (noise, runout, lag).
 SensorParams ReadSensor(const std::string& name, const TableReader& table,
                         const AxialRange& position, const SensorSampling& sampling) {
-  table.AllowOnly({"position_m", "gain", "offset_m", "quantisation_m", "noise", "runout", "lag",
-                   "output", "counts_per_m", "counts_offset"});
+  table.AllowOnly({"position_m", "gain", "gain_x", "gain_y", "offset_m", "offset_x_m", "offset_y_m",
+                   "quantisation_m", "noise", "runout", "lag", "output", "counts_per_m",
+                   "counts_offset"});
   SensorParams s;
   s.name = name;
   s.position_m = ReadAxialPosition(table, position);
   s.gain = table.Number("gain", AnyNumber(), s.gain);
   s.offset_m = table.Number("offset_m", AnyNumber(), s.offset_m);
+  // One axis' own gain or offset overrides the common one. Absent, it is logged at the common
+  // value (so that a fit can move one axis with --set) but left unset, so that the common key
+  // keeps driving that axis.
+  const auto per_axis = [&](std::string_view key, double common) -> std::optional<double> {
+    const double value = table.Number(key, AnyNumber(), common);
+    return table.Has(key) ? std::optional<double>(value) : std::nullopt;
+  };
+  s.gain_x = per_axis("gain_x", s.gain);
+  s.gain_y = per_axis("gain_y", s.gain);
+  s.offset_x_m = per_axis("offset_x_m", s.offset_m);
+  s.offset_y_m = per_axis("offset_y_m", s.offset_m);
   s.quantisation_m = table.Number("quantisation_m", NonNegative(), s.quantisation_m);
   if (const auto noise = table.OptionalTable("noise")) {
     noise->AllowOnly({"enabled", "std_dev_m", "seed"});
     s.noise.enabled = noise->Bool("enabled", false);
-    s.noise.std_dev_m = noise->Number("std_dev_m", NonNegative());
+    // A disabled table does not demand its number; given, it is still checked.
+    s.noise.std_dev_m = s.noise.enabled ? noise->Number("std_dev_m", NonNegative())
+                                        : noise->Number("std_dev_m", NonNegative(), 0.0);
     s.noise.seed = static_cast<std::uint64_t>(noise->Integer("seed", 0, 2147483647, 1));
   }
   if (const auto runout = table.OptionalTable("runout")) {
@@ -141,8 +155,14 @@ std::vector<UnbalanceParams> ReadUnbalances(const TableReader& root, const Axial
     unbalance.name = name;
     unbalance.enabled = table.Bool("enabled", unbalance.enabled);
     unbalance.position_m = ReadAxialPosition(table, position);
-    unbalance.mass_kg = table.Number("mass_kg", NonNegative());
-    unbalance.eccentricity_m = table.Number("eccentricity_m", NonNegative());
+    // A disabled unbalance does not demand its numbers (its position still places a station);
+    // given, they are still checked.
+    const auto number = [&](std::string_view key) {
+      return unbalance.enabled ? table.Number(key, NonNegative())
+                               : table.Number(key, NonNegative(), 0.0);
+    };
+    unbalance.mass_kg = number("mass_kg");
+    unbalance.eccentricity_m = number("eccentricity_m");
     unbalance.phase_rad = table.Number("phase_rad", AnyNumber(), unbalance.phase_rad);
     unbalances.push_back(std::move(unbalance));
   }

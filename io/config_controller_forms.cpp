@@ -178,9 +178,10 @@ AmplifierParams ReadAmplifier(const TableReader& t) {
   t.AllowOnly({"enabled", "order", "bandwidth_Hz", "damping_ratio", "slew_rate_A_per_s"});
   AmplifierParams a;
   a.enabled = t.Bool("enabled", a.enabled);
-  if (!a.enabled) return a;
+  // A disabled loop does not demand its numbers; given, they are still checked.
   a.order = t.Integer("order", 1, 2, a.order);
-  a.bandwidth_Hz = t.Number("bandwidth_Hz", Positive());
+  a.bandwidth_Hz = a.enabled ? t.Number("bandwidth_Hz", Positive())
+                             : t.Number("bandwidth_Hz", Positive(), a.bandwidth_Hz);
   if (a.order == 2) {
     a.damping_ratio = t.Number("damping_ratio", Positive(), a.damping_ratio);
   } else {

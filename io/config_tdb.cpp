@@ -19,6 +19,25 @@ HuntCrossleyParams ReadHuntCrossley(const TableReader& four_dof, std::string_vie
   return params;
 }
 
+// The outer race / housing contact, switchable off (enabled = false: no housing stop). A disabled
+// table does not demand its numbers; given, they are still checked.
+HuntCrossleyParams ReadHousingContact(const TableReader& four_dof, bool* enabled) {
+  const TableReader table = four_dof.Table("housing_contact");
+  table.AllowOnly({"enabled", "stiffness_N_per_m_n", "exponent", "damping_s_per_m"});
+  *enabled = table.Bool("enabled", true);
+  HuntCrossleyParams params;
+  if (*enabled) {
+    params.stiffness_N_per_m_n = table.Number("stiffness_N_per_m_n", Positive());
+    params.exponent = table.Number("exponent", InRange(1.0, 2.0));
+    params.damping_s_per_m = table.Number("damping_s_per_m", NonNegative());
+  } else {
+    params.stiffness_N_per_m_n = table.Number("stiffness_N_per_m_n", Positive(), 0.0);
+    params.exponent = table.Number("exponent", InRange(1.0, 2.0), params.exponent);
+    params.damping_s_per_m = table.Number("damping_s_per_m", NonNegative(), 0.0);
+  }
+  return params;
+}
+
 BallBearingParams ReadBallBearing(const TableReader& four_dof) {
   const TableReader table = four_dof.Table("bearing");
   table.AllowOnly({"balls", "contact_angle_rad", "inner_contact_stiffness_N_per_m1_5",
@@ -149,7 +168,7 @@ FourDofParams ReadFourDof(const TableReader& tdb, const GravityParams& gravity) 
   params.ribbon_clearance_m = table.Number("ribbon_clearance_m", NonNegative());
   params.gravity_y_m_s2 = gravity.enabled ? -gravity.acceleration_m_s2 : 0.0;
   params.inner_contact = ReadHuntCrossley(table, "inner_contact");
-  params.housing_contact = ReadHuntCrossley(table, "housing_contact");
+  params.housing_contact = ReadHousingContact(table, &params.housing_contact_enabled);
   params.bearing = ReadBallBearing(table);
   const std::string bearing_law =
       table.Choice("bearing_law", {"hertz_linearised", "hertz", "quadratic"});

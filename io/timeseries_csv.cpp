@@ -27,6 +27,12 @@ std::vector<std::string> TdbNames(const Model& model) {
   return names;
 }
 
+std::vector<std::string> AmbNames(const Model& model) {
+  std::vector<std::string> names;
+  for (const AmbParams& amb : model.params.ambs) names.push_back(amb.name);
+  return names;
+}
+
 void AppendNumber(std::string* line, double value) {
   line->push_back(',');
   fmt::format_to(std::back_inserter(*line), "{:.17g}", value);
@@ -36,20 +42,26 @@ void AppendNumber(std::string* line, double value) {
 
 TimeseriesCsvWriter::TimeseriesCsvWriter(const std::filesystem::path& path,
                                          std::vector<std::string> sensor_names,
-                                         std::vector<std::string> tdb_names)
-    : path_(path), sensor_names_(std::move(sensor_names)), tdb_names_(std::move(tdb_names)) {
+                                         std::vector<std::string> tdb_names,
+                                         std::vector<std::string> amb_names)
+    : path_(path),
+      sensor_names_(std::move(sensor_names)),
+      tdb_names_(std::move(tdb_names)),
+      amb_names_(std::move(amb_names)) {
   if (sensor_names_.size() > static_cast<std::size_t>(kMaxSensors) ||
-      tdb_names_.size() > static_cast<std::size_t>(kMaxTdbs)) {
-    throw std::invalid_argument(
-        fmt::format("timeseries: {} sensors and {} TDBs, an observation holds at most {} and {}",
-                    sensor_names_.size(), tdb_names_.size(), kMaxSensors, kMaxTdbs));
+      tdb_names_.size() > static_cast<std::size_t>(kMaxTdbs) ||
+      amb_names_.size() > static_cast<std::size_t>(kMaxAmbs)) {
+    throw std::invalid_argument(fmt::format(
+        "timeseries: {} sensors, {} TDBs and {} AMBs, an observation holds at most {}, {} and {}",
+        sensor_names_.size(), tdb_names_.size(), amb_names_.size(), kMaxSensors, kMaxTdbs,
+        kMaxAmbs));
   }
   out_.open(path_, std::ios::binary | std::ios::trunc);
   if (!out_) {
     throw std::runtime_error(
         fmt::format("cannot open '{}' for writing: {}", path_.string(), std::strerror(errno)));
   }
-  const std::vector<std::string> columns = ColumnNames(sensor_names_, tdb_names_);
+  const std::vector<std::string> columns = ColumnNames(sensor_names_, tdb_names_, amb_names_);
   for (std::size_t i = 0; i < columns.size(); ++i) {
     if (i > 0) buffer_.push_back(',');
     buffer_.append(columns[i]);
@@ -60,6 +72,11 @@ TimeseriesCsvWriter::TimeseriesCsvWriter(const std::filesystem::path& path,
 TimeseriesCsvWriter::TimeseriesCsvWriter(const std::filesystem::path& path, const Model& model)
     : TimeseriesCsvWriter(path, SensorNames(model), TdbNames(model)) {}
 
+TimeseriesCsvWriter::TimeseriesCsvWriter(const std::filesystem::path& path, const Model& model,
+                                         bool amb_currents)
+    : TimeseriesCsvWriter(path, SensorNames(model), TdbNames(model),
+                          amb_currents ? AmbNames(model) : std::vector<std::string>{}) {}
+
 TimeseriesCsvWriter::~TimeseriesCsvWriter() {
   // A destructor must not throw; callers that care about I/O errors call Close() themselves.
   try {
@@ -69,7 +86,8 @@ TimeseriesCsvWriter::~TimeseriesCsvWriter() {
 }
 
 std::vector<std::string> TimeseriesCsvWriter::ColumnNames(
-    const std::vector<std::string>& sensor_names, const std::vector<std::string>& tdb_names) {
+    const std::vector<std::string>& sensor_names, const std::vector<std::string>& tdb_names,
+    const std::vector<std::string>& amb_names) {
   std::vector<std::string> columns{"time_s"};
   for (const std::string& name : sensor_names) {
     columns.push_back(fmt::format("sensor_{}_x_m", name));
@@ -84,10 +102,23 @@ std::vector<std::string> TimeseriesCsvWriter::ColumnNames(
     columns.push_back(fmt::format("tdb_{}_journal_x_m", name));
     columns.push_back(fmt::format("tdb_{}_journal_y_m", name));
   }
+  for (const std::string& name : amb_names) {
+    columns.push_back(fmt::format("amb_{}_x_command_A", name));
+    columns.push_back(fmt::format("amb_{}_y_command_A", name));
+    columns.push_back(fmt::format("amb_{}_x_coil_A", name));
+    columns.push_back(fmt::format("amb_{}_y_coil_A", name));
+  }
   return columns;
 }
 
 void TimeseriesCsvWriter::Write(const Observation& observation) {
+  if (!amb_names_.empty()) {
+    throw std::logic_error("timeseries: a writer with AMB columns needs the row's currents");
+  }
+  Write(observation, AmbCurrents{});
+}
+
+void TimeseriesCsvWriter::Write(const Observation& observation, const AmbCurrents& currents) {
   fmt::format_to(std::back_inserter(buffer_), "{:.17g}", observation.time_s);
   for (std::size_t i = 0; i < sensor_names_.size(); ++i) {
     AppendNumber(&buffer_, observation.sensor_xy_m[i][0]);
@@ -102,6 +133,12 @@ void TimeseriesCsvWriter::Write(const Observation& observation) {
     AppendNumber(&buffer_, tdb.tdb_spin_rad_s);
     AppendNumber(&buffer_, observation.tdb_journal_xy_m[i][0]);
     AppendNumber(&buffer_, observation.tdb_journal_xy_m[i][1]);
+  }
+  for (std::size_t i = 0; i < amb_names_.size(); ++i) {
+    AppendNumber(&buffer_, currents.command_A[i][0]);
+    AppendNumber(&buffer_, currents.command_A[i][1]);
+    AppendNumber(&buffer_, currents.coil_A[i][0]);
+    AppendNumber(&buffer_, currents.coil_A[i][1]);
   }
   buffer_.push_back('\n');
   ++rows_;

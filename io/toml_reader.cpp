@@ -106,7 +106,8 @@ NumberRule NonNegativeBelow(double upper, std::string what) {
 
 std::string UnitOfKey(std::string_view key) {
   // Longest suffix first, so "_N_s_per_m" wins over "_s_per_m" and "_m".
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 23> kUnits = {{
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 24> kUnits = {{
+      {"_N_m2_per_A2", "N m^2/A^2"},
       {"_N_per_m1_5", "N/m^1.5"},
       {"_s_per_rad", "s/rad"},
       {"_N_m_s2", "N m s^2"},

@@ -11,8 +11,10 @@ namespace ambdrop {
 
 inline constexpr double kVacuumPermeability_H_per_m = 1.25663706212e-6;
 
-/// k of the electromagnet law, mu0 N^2 A cos(alpha) / 4 (N m^2 / A^2).
+/// k of the electromagnet law (N m^2 / A^2): as given, or from the geometry,
+/// mu0 N^2 A cos(alpha) / 4 (seed 003, Eq. (2)).
 inline double ElectromagnetConstant(const ElectromagnetParams& e) noexcept {
+  if (e.constant_N_m2_per_A2 > 0.0) return e.constant_N_m2_per_A2;
   return kVacuumPermeability_H_per_m * e.turns * e.turns * e.pole_area_m2 *
          std::cos(e.pole_half_angle_rad) / 4.0;
 }

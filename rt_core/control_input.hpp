@@ -15,6 +15,15 @@ struct AmbDrive {
   std::array<double, 2> bias_scale{1.0, 1.0};
 };
 
+/// The currents of every AMB axis (x, y) at one output row: what the controller (or the current
+/// profile) commands, and the control current the coils carry: the command within the
+/// amplifier's limit (ControlCurrentLimit) while powered; after power loss the current it held
+/// then, falling by the AMB's power-loss law (ReportedCoilCurrent), while the command goes on.
+struct AmbCurrents {
+  std::array<std::array<double, 2>, kMaxAmbs> command_A{};
+  std::array<std::array<double, 2>, kMaxAmbs> coil_A{};
+};
+
 /// What the controller side hands the physics for one step (zero-order hold over the step).
 struct ControlInput {
   bool motor_on = true;  ///< the drive holds the spin speed; off after the shutdown trigger

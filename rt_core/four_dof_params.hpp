@@ -81,6 +81,9 @@ struct FourDofParams {
   double gravity_y_m_s2 = 0.0;         ///< on the races, along +y (set from [gravity] at load)
   HuntCrossleyParams inner_contact;    ///< journal / inner race
   HuntCrossleyParams housing_contact;  ///< outer race / housing
+  /// false: no housing stop, the outer race travels on the ribbon alone (a rig whose ribbon is
+  /// not backed by a housing within reach).
+  bool housing_contact_enabled = true;
   BallBearingParams bearing;
   RibbonLaw ribbon = RibbonLaw::kKelvinVoigt;
   KelvinVoigtRibbonParams kelvin_voigt;

@@ -117,7 +117,8 @@ void FourDofTdb::Evaluate(const JournalMotion& j, const double* s, double* rate,
   double housing_x = 0.0, housing_y = 0.0;  // on the outer race
   // The root is taken only once the ribbon clearance is used up, which the races rarely do.
   const double outer_radius_squared = ox * ox + oy * oy;
-  if (outer_radius_squared > f.ribbon_clearance_m * f.ribbon_clearance_m) {
+  if (f.housing_contact_enabled &&
+      outer_radius_squared > f.ribbon_clearance_m * f.ribbon_clearance_m) {
     const double outer_radius = std::sqrt(outer_radius_squared);
     const double uh = outer_radius - f.ribbon_clearance_m;
     const double inverse_radius = 1.0 / outer_radius;

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,13 +38,24 @@ struct SensorLagParams {
 enum class SensorOutput { kMetres, kCounts };
 
 /// A displacement-sensor plane: what the controller reads is
-///   gain * (displacement + runout) + offset, delayed, filtered, plus noise, quantised,
-/// in metres or in ADC counts (counts = round(reading * counts_per_m + counts_offset)).
+///   gain_a * (displacement_a + runout_a) + offset_a   (per axis a = x, y),
+/// delayed, filtered, plus noise, quantised, in metres or in ADC counts
+/// (counts = round(reading * counts_per_m + counts_offset)).
 struct SensorParams {
   std::string name;
   double position_m = 0.0;
-  double gain = 1.0;  ///< m/m, a scale error
-  double offset_m = 0.0;
+  double gain = 1.0;      ///< m/m, a scale error of both axes (unless gain_x / gain_y is given)
+  double offset_m = 0.0;  ///< of both axes (unless offset_x_m / offset_y_m is given)
+  /// One axis' own gain and offset (a probe drifted on one axis); absent: the common value.
+  std::optional<double> gain_x;
+  std::optional<double> gain_y;
+  std::optional<double> offset_x_m;
+  std::optional<double> offset_y_m;
+  /// The gain (m/m) and offset (m) of axis 0 (x) or 1 (y).
+  double AxisGain(int axis) const noexcept { return (axis == 0 ? gain_x : gain_y).value_or(gain); }
+  double AxisOffset_m(int axis) const noexcept {
+    return (axis == 0 ? offset_x_m : offset_y_m).value_or(offset_m);
+  }
   double quantisation_m = 0.0;  ///< 0: none
   SensorNoiseParams noise;
   SensorRunoutParams runout;

@@ -340,3 +340,52 @@ TEST(FourDofTdbEnergy, DahlNeverReturnsMoreThanItReceived) {
 
 }  // namespace
 }  // namespace ambdrop
+
+namespace ambdrop {
+namespace {
+
+// The housing contact switched off (issue 23 item 5): a load that pushes the races further than
+// the ribbon clearance finds no housing; with the contact on, the housing stops the outer race
+// near the clearance and takes the load.
+TEST(FourDofTdb, HousingContactSwitchedOffLetsTheOuterRaceTravelOn) {
+  for (const bool housing : {true, false}) {
+    TdbParams p = Tdb();
+    // A large load on the races: their weight under 1000 m/s^2 on the ribbon is 900 N, which
+    // the ribbon alone (5e6 N/m) carries at 0.18 mm, beyond the 0.146 mm clearance.
+    p.four_dof.gravity_y_m_s2 = -1000.0;
+    p.four_dof.housing_contact_enabled = housing;
+    const FourDofTdb tdb(p);
+    States s{}, rate{};
+    TdbForce f;
+    // From rest at the centre, semi-implicit Euler until the races settle (the ribbon's
+    // damping settles them within 1 ms; 10 ms here).
+    const double dt = 1e-7;
+    for (int k = 0; k < 100000; ++k) {
+      tdb.Evaluate({0.0, 0.0, 0.0, 0.0, 0.0}, s.data(), rate.data(), &f);
+      for (const int v : {S::kInnerVx, S::kInnerVy, S::kOuterVx, S::kOuterVy}) {
+        s[v] += dt * rate[v];
+      }
+      for (const int x : {S::kInnerX, S::kInnerY, S::kOuterX, S::kOuterY}) s[x] += dt * rate[x];
+      s[S::kRaceSpin] += dt * rate[S::kRaceSpin];
+    }
+    tdb.Evaluate({0.0, 0.0, 0.0, 0.0, 0.0}, s.data(), rate.data(), &f);
+    const double ribbon_y = 5e6 * s[S::kOuterY] + 7e3 * s[S::kOuterVy];  // Eq. (4)
+    const double housing_y = ribbon_y - f.support_y_N;  // what the housing puts on the race
+    // Either way the housing mount carries the races' 900 N.
+    EXPECT_NEAR(f.support_y_N, 0.9 * -1000.0, 1e-3 * 900.0) << "housing " << housing;
+    if (housing) {
+      // Stopped just past the clearance (Eq. (10): 4e9 N/m takes the rest within 0.1 um).
+      EXPECT_GT(-s[S::kOuterY], 0.146e-3);
+      EXPECT_LT(-s[S::kOuterY], 0.146e-3 + 1e-7);
+      EXPECT_GT(housing_y, 100.0);  // the housing pushes up on the race
+    } else {
+      // On the ribbon alone: at its static deflection, 0.18 mm (settled to 0.1 %), well beyond
+      // the clearance.
+      EXPECT_NEAR(-s[S::kOuterY], 900.0 / 5e6, 1e-3 * 900.0 / 5e6);
+      EXPECT_NEAR(housing_y, 0.0, 1e-6);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace ambdrop

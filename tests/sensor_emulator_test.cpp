@@ -38,6 +38,44 @@ TEST(SensorEmulator, GainOffsetAndQuantisation) {
   EXPECT_NEAR(r.reading_m[0][1], -2e-6, 1e-18);  // 1.02 * -4.6 + 3 = -1.692 → -2 um
 }
 
+// A probe whose x gain drifted (issue 23 item 4): the x reading scales by the gain error, the y
+// reading and everything downstream of it stay bit for bit those of the healthy sensor.
+TEST(SensorEmulator, OneAxisGainOrOffsetLeavesTheOtherAxisAlone) {
+  SensorParams healthy;
+  healthy.gain = 1.02;
+  healthy.offset_m = 3e-6;
+  healthy.lag = {true, 2 * 5e-5, 800.0};  // the error passes through the same lag as the signal
+  SensorParams drifted = healthy;
+  drifted.gain_x = 1.02 * 1.1;
+  SensorParams shifted = healthy;
+  shifted.offset_y_m = 3e-6 + 5e-6;
+  SensorEmulator a({healthy}, 5e-5), b({drifted}, 5e-5), c({shifted}, 5e-5);
+  SensorReadings ra, rb, rc;
+  for (int k = 0; k < 50; ++k) {
+    // Offset-free motion, so that the x reading of the drifted probe is 1.1x the healthy one
+    // once the offsets are taken out.
+    const double x = 20e-6 * std::sin(0.3 * k), y = -15e-6 * std::cos(0.2 * k);
+    a.Sample(At(x, y), &ra);
+    b.Sample(At(x, y), &rb);
+    c.Sample(At(x, y), &rc);
+    EXPECT_EQ(rb.reading_m[0][1], ra.reading_m[0][1]) << "sample " << k;
+    EXPECT_EQ(rc.reading_m[0][0], ra.reading_m[0][0]) << "sample " << k;
+    // The lag is linear, and a constant offset passes it unchanged.
+    EXPECT_NEAR(rb.reading_m[0][0] - 3e-6, 1.1 * (ra.reading_m[0][0] - 3e-6), 1e-17);
+    EXPECT_NEAR(rc.reading_m[0][1] - ra.reading_m[0][1], 5e-6, 1e-17);
+  }
+  // Per-axis values equal to the common ones change nothing.
+  SensorParams explicit_axes = healthy;
+  explicit_axes.gain_x = explicit_axes.gain_y = healthy.gain;
+  explicit_axes.offset_x_m = explicit_axes.offset_y_m = healthy.offset_m;
+  SensorEmulator d({explicit_axes}, 5e-5), e({healthy}, 5e-5);
+  SensorReadings rd, re;
+  d.Sample(At(7e-6, -2e-6), &rd);
+  e.Sample(At(7e-6, -2e-6), &re);
+  EXPECT_EQ(rd.reading_m[0][0], re.reading_m[0][0]);
+  EXPECT_EQ(rd.reading_m[0][1], re.reading_m[0][1]);
+}
+
 TEST(SensorEmulator, DelayIsWholeSamples) {
   SensorParams p;
   p.lag = {true, 3 * 5e-5, 0.0};

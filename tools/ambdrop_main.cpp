@@ -76,6 +76,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   AddSetOption(sim_command, &sim.overrides);
   sim_command->add_flag("--quiet,-q", sim.quiet, "No summary on stdout and no progress bar");
+  sim_command->add_flag("--amb-currents", sim.amb_currents,
+                        "timeseries.csv: every AMB's commanded and coil currents per axis "
+                        "(amb_<name>_x_command_A, ..., amb_<name>_y_coil_A) as the last columns");
   sim_command
       ->add_option("--record", sim.record_path,
                    "Record the run (inputs, power events, sensor samples, state) into an LCM "

@@ -130,7 +130,13 @@ void PrintSummaryTable(const RunStatistics& run, const RunSummary& summary, cons
 }  // namespace
 
 int RunSimCommand(const SimOptions& options) {
-  if (!options.scenario_path.empty()) return RunScenarioCommand(options);
+  if (!options.scenario_path.empty()) {
+    if (options.amb_currents) {
+      fmt::print(stderr, "error: --amb-currents is not available with --scenario (yet)\n");
+      return kExitUsage;
+    }
+    return RunScenarioCommand(options);
+  }
   LoadedConfig config;
   try {
     config = LoadConfig(options.config_path, options.overrides);
@@ -160,7 +166,7 @@ int RunSimCommand(const SimOptions& options) {
   try {
     fs::create_directories(out_dir);
     WriteTextFile(out_dir / "effective_config.toml", config.effective_toml);
-    csv.emplace(out_dir / "timeseries.csv", *model);
+    csv.emplace(out_dir / "timeseries.csv", *model, options.amb_currents);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitError;
@@ -191,11 +197,11 @@ int RunSimCommand(const SimOptions& options) {
   // RunOffline cannot be stopped from a callback, so an output error is held until it returns
   // rather than thrown through the simulator.
   std::string output_error;
-  const auto on_output = [&](const Observation& observation) {
+  const auto on_output = [&](const Observation& observation, const AmbCurrents& currents) {
     summary.Add(observation);
     if (!output_error.empty()) return;
     try {
-      csv->Write(observation);
+      csv->Write(observation, currents);
     } catch (const std::exception& e) {
       output_error = e.what();
     }
@@ -204,7 +210,7 @@ int RunSimCommand(const SimOptions& options) {
 
   const auto start = std::chrono::steady_clock::now();
   TrajectoryHasher hasher(model->params.sensors.size(), recorder.get());
-  const OfflineRunResult result = RunOffline(*model, on_output, on_progress, &hasher);
+  const OfflineRunResult result = RunOfflineWithCurrents(*model, on_output, on_progress, &hasher);
   const auto stop = std::chrono::steady_clock::now();
   progress.Finish();
 

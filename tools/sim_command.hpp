@@ -11,6 +11,10 @@ struct SimOptions {
   bool quiet = false;                  ///< no summary on stdout, no progress bar
   std::string record_path;             ///< "": no record; else an LCM event log of the run
   std::string scenario_path;  ///< a scenario file (its own rig config): see scenario_command
+  /// timeseries.csv gets every AMB's commanded and coil currents as its last columns (off by
+  /// default: replay, hil and scenario runs do not write them yet, and their files are compared
+  /// byte for byte with sim's).
+  bool amb_currents = false;
 };
 
 /// `ambdrop sim`: loads the config, runs it offline and writes into options.out_dir

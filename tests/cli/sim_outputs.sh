@@ -111,4 +111,31 @@ rc=0
 grep -q 'clearence_m' "$work/bad_stderr" ||
   fail "the error does not name the bad key: $(cat "$work/bad_stderr")"
 
+# --- --amb-currents: the same rows, with every AMB's currents as the last columns -------------
+"$tool" sim "$source_dir/configs/jarroux2019_industrial_pid.toml" --set simulation.duration_s=0.21 \
+  --out "$work/currents" --quiet --amb-currents >/dev/null 2>"$work/currents_stderr" ||
+  fail "sim --amb-currents: $(cat "$work/currents_stderr")"
+"$tool" sim "$source_dir/configs/jarroux2019_industrial_pid.toml" --set simulation.duration_s=0.21 \
+  --out "$work/plain" --quiet >/dev/null 2>&1 || fail "sim without --amb-currents"
+python3 - "$work/currents/timeseries.csv" "$work/plain/timeseries.csv" <<'PY' || fail "--amb-currents"
+import csv, sys
+with_currents = list(csv.reader(open(sys.argv[1])))
+plain = list(csv.reader(open(sys.argv[2])))
+extra = [f"amb_{n}_{a}_{q}_A" for n in ("nde", "de") for q in ("command", "coil") for a in "xy"]
+header = with_currents[0]
+assert sorted(header[len(plain[0]):]) == sorted(extra), header
+assert len(with_currents) == len(plain)
+for a, b in zip(with_currents, plain):
+    assert a[:len(b)] == b, "the other columns moved"
+# Levitated: the y coil currents carry the weight; after the 0.2 s trigger they are gone (no
+# flux decay in this config) while the command goes on.
+rows = with_currents[1:]
+t = [float(r[0]) for r in rows]
+coil = [float(r[header.index("amb_de_y_coil_A")]) for r in rows]
+command = [float(r[header.index("amb_de_y_command_A")]) for r in rows]
+assert abs(coil[len(rows) // 2]) > 0.1, coil[len(rows) // 2]
+assert all(c == 0.0 for tt, c in zip(t, coil) if tt > 0.2 + 1e-9)
+assert any(c != 0.0 for tt, c in zip(t, command) if tt > 0.2 + 1e-9)
+PY
+
 echo "sim_outputs: ok"
