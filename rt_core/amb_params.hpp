@@ -18,8 +18,6 @@ enum class AmbForceLaw {
 
 /// Geometry of one axis of a differential-driving heteropolar AMB (seed 003, Sec. 2).
 struct ElectromagnetParams {
-  /// k (N m^2/A^2) as a rig sheet gives it; 0: from the geometry, mu0 N^2 A cos(alpha) / 4.
-  double constant_N_m2_per_A2 = 0.0;
   double pole_area_m2 = 0.0;                        ///< A, one pole face
   double turns = 0.0;                               ///< N, per coil
   double nominal_gap_m = 0.0;                       ///< g0, air gap with the rotor centred
@@ -29,6 +27,9 @@ struct ElectromagnetParams {
   /// cannot exceed saturation_flux_density_T, which caps the coil's force (an effect switch).
   bool saturation_enabled = false;
   double saturation_flux_density_T = 0.0;
+  /// k (N m^2/A^2) as a rig sheet gives it; 0: from the geometry, mu0 N^2 A cos(alpha) / 4.
+  /// Last, so that brace-initialised geometries keep their order.
+  double constant_N_m2_per_A2 = 0.0;
 };
 
 /// What makes the bias flux of a current-driven AMB: the amplifiers (the coils carry I0 +- i,
