@@ -127,6 +127,12 @@ FitRange DefaultFitRange(const ConfigKey& key) {
   return r;
 }
 
+const ConfigKey* FindKey(const std::vector<ConfigKey>& keys, std::string_view path) {
+  const auto it =
+      std::find_if(keys.begin(), keys.end(), [&](const ConfigKey& k) { return k.path == path; });
+  return it == keys.end() ? nullptr : &*it;
+}
+
 void KeyLog::Record(ConfigKey key) {
   const auto same = std::find_if(keys_.begin(), keys_.end(),
                                  [&](const ConfigKey& k) { return k.path == key.path; });

@@ -49,6 +49,9 @@ struct FitRange {
 };
 FitRange DefaultFitRange(const ConfigKey& key);
 
+/// The key with this path among `keys`; nullptr if no reader took it.
+const ConfigKey* FindKey(const std::vector<ConfigKey>& keys, std::string_view path);
+
 /// The keys a load recorded, in the order read; a key read twice is kept once (the last read).
 class KeyLog {
  public:

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "io/config_loader.hpp"
+#include "test_configs.hpp"
 
 namespace ambdrop {
 namespace {
@@ -25,14 +26,7 @@ centre_of_mass_m = 0.2
 position_m = 0.1
 )";
 
-std::string ErrorOf(const std::string& text) {
-  try {
-    LoadConfigFromString(text, "test.toml");
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using testing::ConfigErrorOf;
 
 TEST(ConfigHil, ElectromagnetAmbLoads) {
   const ModelParams p = LoadConfigFromString(kRigid + R"(
@@ -60,7 +54,7 @@ time_constant_s = 1e-3
 }
 
 TEST(ConfigHil, ElectromagnetRules) {
-  EXPECT_THAT(ErrorOf(kRigid + R"(
+  EXPECT_THAT(ConfigErrorOf(kRigid + R"(
 [amb.a]
 position_m = 0.1
 law = "electromagnet"
@@ -68,13 +62,13 @@ current_gain_N_per_A = 3.0
 )"),
               HasSubstr("test.toml:15: key 'amb.a.current_gain_N_per_A': expected no "
                         "current_gain_N_per_A with law = \"electromagnet\""));
-  EXPECT_THAT(ErrorOf(kRigid + R"(
+  EXPECT_THAT(ConfigErrorOf(kRigid + R"(
 [amb.a]
 position_m = 0.1
 law = "electromagnet"
 )"),
               HasSubstr("missing key 'amb.a.electromagnet'"));
-  EXPECT_THAT(ErrorOf(kRigid + R"(
+  EXPECT_THAT(ConfigErrorOf(kRigid + R"(
 [amb.a]
 position_m = 0.1
 law = "electromagnet"
@@ -86,7 +80,7 @@ bias_current_A = 2.0
 )"),
               HasSubstr("test.toml:18: key 'amb.a.electromagnet.nominal_gap_m': expected a "
                         "positive number (m), found -0.00025"));
-  EXPECT_THAT(ErrorOf(kRigid + R"(
+  EXPECT_THAT(ConfigErrorOf(kRigid + R"(
 [amb.a]
 position_m = 0.1
 stiffness_N_per_m = 1.0
@@ -132,17 +126,17 @@ cutoff_Hz = 2000.0
   EXPECT_EQ(s.output, SensorOutput::kCounts);
   EXPECT_EQ(s.noise.seed, 5u);
   EXPECT_EQ(s.lag.cutoff_Hz, 2000.0);
-  EXPECT_THAT(ErrorOf(kRigid + "output = \"counts\"\n"),
+  EXPECT_THAT(ConfigErrorOf(kRigid + "output = \"counts\"\n"),
               HasSubstr("missing key 'sensor.a.counts_per_m'"));
-  EXPECT_THAT(ErrorOf(kRigid + "counts_per_m = 1e7\n"),
+  EXPECT_THAT(ConfigErrorOf(kRigid + "counts_per_m = 1e7\n"),
               HasSubstr("test.toml:11: key 'sensor.a.counts_per_m': expected no counts_per_m "
                         "with output = \"metres\""));
 }
 
 TEST(ConfigHil, ControllerTable) {
-  EXPECT_THAT(ErrorOf(kRigid + "[controller]\nkind = \"internal_pid\"\n"),
+  EXPECT_THAT(ConfigErrorOf(kRigid + "[controller]\nkind = \"internal_pid\"\n"),
               HasSubstr("missing key 'controller.pid'"));
-  EXPECT_THAT(ErrorOf(kRigid + "[controller]\nkind = \"external\"\n"),
+  EXPECT_THAT(ConfigErrorOf(kRigid + "[controller]\nkind = \"external\"\n"),
               HasSubstr("test.toml:12: key 'controller.kind': expected one of \"none\", "
                         "\"internal_pid\", \"internal_linear\", found \"external\""));
   const ModelParams p = LoadConfigFromString(kRigid + R"(
@@ -172,12 +166,12 @@ TEST(ConfigHil, TriggerPartialAndRestore) {
   ASSERT_EQ(p.trigger.ambs.size(), 1u);
   EXPECT_FALSE(p.trigger.axis_x);
   EXPECT_TRUE(p.trigger.axis_y);
-  EXPECT_THAT(ErrorOf(kRigid + "[trigger]\ntime_s = 0.3\nrestore_time_s = 0.2\n"),
+  EXPECT_THAT(ConfigErrorOf(kRigid + "[trigger]\ntime_s = 0.3\nrestore_time_s = 0.2\n"),
               HasSubstr("test.toml:13: key 'trigger.restore_time_s': expected a number > "
                         "trigger.time_s = 0.3 (s), found 0.2"));
-  EXPECT_THAT(ErrorOf(kRigid + "[trigger]\naxes = \"z\"\n"),
+  EXPECT_THAT(ConfigErrorOf(kRigid + "[trigger]\naxes = \"z\"\n"),
               HasSubstr("test.toml:12: key 'trigger.axes': expected one of \"xy\", \"x\", \"y\""));
-  EXPECT_THAT(ErrorOf(kRigid + "[trigger]\nambs = [1]\n"),
+  EXPECT_THAT(ConfigErrorOf(kRigid + "[trigger]\nambs = [1]\n"),
               HasSubstr("test.toml:12: key 'trigger.ambs': expected an array of AMB names"));
 }
 
@@ -206,7 +200,7 @@ position_gain_N_per_m = 1e5
 TEST(ConfigBase, ErrorsNameTheFileTheyAreIn) {
   const std::string dir = std::string(AMBDROP_SOURCE_DIR) + "/tests/data/";
   // A config given as text resolves its base from its name's folder: here, none.
-  EXPECT_THAT(ErrorOf("base = \"base_rig_bad.toml\"\n" + kRigid),
+  EXPECT_THAT(ConfigErrorOf("base = \"base_rig_bad.toml\"\n" + kRigid),
               HasSubstr("test.toml:1: key 'base': expected a readable config file"));
   try {
     LoadConfigFromString("base = \"base_rig_bad.toml\"\n" + kRigid, dir + "derived.toml");

@@ -18,15 +18,6 @@
 namespace ambdrop {
 namespace {
 
-std::vector<std::string> Rigs() {
-  std::vector<std::string> rigs;
-  for (const auto& entry : std::filesystem::directory_iterator(testing::ConfigPath(""))) {
-    if (entry.path().extension() == ".toml") rigs.push_back(entry.path().filename().string());
-  }
-  std::sort(rigs.begin(), rigs.end());
-  return rigs;
-}
-
 std::map<std::string, ConfigKey> ByPath(const std::vector<ConfigKey>& keys) {
   std::map<std::string, ConfigKey> out;
   for (const ConfigKey& k : keys) out[k.path] = k;
@@ -55,7 +46,7 @@ TEST(ConfigKeys, ClassesFollowWhatAKeyDescribes) {
 }
 
 TEST(ConfigKeys, EveryRigRecordsItsNumbersWithUnitsAndClasses) {
-  for (const std::string& rig : Rigs()) {
+  for (const std::string& rig : testing::RigConfigFiles()) {
     SCOPED_TRACE(rig);
     const LoadedConfig loaded = LoadConfig(testing::ConfigPath(rig));
     ASSERT_GT(loaded.keys.size(), 10u);
@@ -78,7 +69,7 @@ TEST(ConfigKeys, EveryRigRecordsItsNumbersWithUnitsAndClasses) {
 }
 
 TEST(ConfigKeys, DefaultFitRangesHoldTheValueInsideTheAcceptedRange) {
-  for (const std::string& rig : Rigs()) {
+  for (const std::string& rig : testing::RigConfigFiles()) {
     SCOPED_TRACE(rig);
     for (const ConfigKey& k : LoadConfig(testing::ConfigPath(rig)).keys) {
       if (k.key_class != KeyClass::kPhysical) continue;
@@ -95,7 +86,7 @@ TEST(ConfigKeys, DefaultFitRangesHoldTheValueInsideTheAcceptedRange) {
 // new value inside its fit range moves that key, and only that key, of everything declared.
 TEST(ConfigKeys, EveryDeclaredPhysicalKeyIsReachedByItsSetPath) {
   std::size_t checked = 0;
-  for (const std::string& rig : Rigs()) {
+  for (const std::string& rig : testing::RigConfigFiles()) {
     SCOPED_TRACE(rig);
     const std::string path = testing::ConfigPath(rig);
     const std::vector<ConfigKey> declared = LoadConfig(path).keys;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/config_loader.hpp"
+#include "test_configs.hpp"
 
 namespace ambdrop {
 namespace {
@@ -49,14 +50,7 @@ ModelParams Load(const std::string& text, const std::vector<std::string>& overri
   return LoadConfigFromString(text, "test.toml", overrides).params;
 }
 
-std::string ErrorOf(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  try {
-    LoadConfigFromString(text, "test.toml", overrides);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using testing::ConfigErrorOf;
 
 TEST(ConfigPowerLoss, DefaultsAreTheElectromagnetBiasAndTheExponential) {
   const AmbParams a = Load(kLinearised).ambs.at(0);
@@ -104,7 +98,7 @@ TEST(ConfigPowerLoss, ADisabledTableDoesNotDemandItsNumbers) {
         << law;
   }
   // ... but still checks the ones it is given.
-  EXPECT_THAT(ErrorOf(kLinearised + R"([amb.a.flux_decay]
+  EXPECT_THAT(ConfigErrorOf(kLinearised + R"([amb.a.flux_decay]
 enabled = false
 time_constant_s = -1.0
 )"),
@@ -113,10 +107,10 @@ time_constant_s = -1.0
 }
 
 TEST(ConfigPowerLoss, BiasSourceRules) {
-  EXPECT_THAT(ErrorOf(kLinearised + "bias_source = \"magnet\"\n"),
+  EXPECT_THAT(ConfigErrorOf(kLinearised + "bias_source = \"magnet\"\n"),
               HasSubstr("test.toml:16: key 'amb.a.bias_source': expected one of "
                         "\"electromagnet\", \"permanent_magnet\", found \"magnet\""));
-  EXPECT_THAT(ErrorOf(kRigid + R"([amb.a]
+  EXPECT_THAT(ConfigErrorOf(kRigid + R"([amb.a]
 position_m = 0.1
 stiffness_N_per_m = 1.0
 damping_N_s_per_m = 1.0
@@ -127,11 +121,12 @@ bias_source = "permanent_magnet"
 }
 
 TEST(ConfigPowerLoss, CurrentLawRules) {
-  EXPECT_THAT(ErrorOf(kLinearised + "[amb.a.flux_decay]\nenabled = true\ncurrent_law = \"ramp\"\n"),
-              HasSubstr("test.toml:18: key 'amb.a.flux_decay.current_law': expected one of "
-                        "\"exponential\", \"slew_limited_ramp\", \"hold_then_exponential\", found "
-                        "\"ramp\""));
-  EXPECT_THAT(ErrorOf(kRigid + R"([amb.a]
+  EXPECT_THAT(
+      ConfigErrorOf(kLinearised + "[amb.a.flux_decay]\nenabled = true\ncurrent_law = \"ramp\"\n"),
+      HasSubstr("test.toml:18: key 'amb.a.flux_decay.current_law': expected one of "
+                "\"exponential\", \"slew_limited_ramp\", \"hold_then_exponential\", found "
+                "\"ramp\""));
+  EXPECT_THAT(ConfigErrorOf(kRigid + R"([amb.a]
 position_m = 0.1
 stiffness_N_per_m = 1.0
 damping_N_s_per_m = 1.0
@@ -148,21 +143,21 @@ TEST(ConfigPowerLoss, KeysOfAnotherCurrentLawAreRefused) {
   const std::string ramp = kLinearised +
                            "bias_source = \"permanent_magnet\"\n[amb.a.flux_decay]\nenabled = "
                            "true\ncurrent_law = \"slew_limited_ramp\"\nslew_rate_A_per_s = 10.0\n";
-  EXPECT_THAT(ErrorOf(ramp + "time_constant_s = 1e-3\n"),
+  EXPECT_THAT(ConfigErrorOf(ramp + "time_constant_s = 1e-3\n"),
               HasSubstr("test.toml:21: key 'amb.a.flux_decay.time_constant_s': expected no "
                         "time_constant_s with current_law = \"slew_limited_ramp\""));
-  EXPECT_THAT(ErrorOf(ramp + "hold_time_s = 1e-3\n"),
+  EXPECT_THAT(ConfigErrorOf(ramp + "hold_time_s = 1e-3\n"),
               HasSubstr("test.toml:21: key 'amb.a.flux_decay.hold_time_s': expected no "
                         "hold_time_s with current_law = \"slew_limited_ramp\""));
   const std::string exponential =
       kLinearised + "[amb.a.flux_decay]\nenabled = true\ntime_constant_s = 1e-3\n";
-  EXPECT_THAT(ErrorOf(exponential + "slew_rate_A_per_s = 10.0\n"),
+  EXPECT_THAT(ConfigErrorOf(exponential + "slew_rate_A_per_s = 10.0\n"),
               HasSubstr("test.toml:19: key 'amb.a.flux_decay.slew_rate_A_per_s': expected no "
                         "slew_rate_A_per_s with current_law = \"exponential\""));
-  EXPECT_THAT(ErrorOf(exponential + "hold_time_s = 1e-3\n"),
+  EXPECT_THAT(ConfigErrorOf(exponential + "hold_time_s = 1e-3\n"),
               HasSubstr("test.toml:19: key 'amb.a.flux_decay.hold_time_s': expected no "
                         "hold_time_s with current_law = \"exponential\""));
-  EXPECT_THAT(ErrorOf(exponential + "bias_current_A = 2.0\n"),
+  EXPECT_THAT(ConfigErrorOf(exponential + "bias_current_A = 2.0\n"),
               HasSubstr("test.toml:19: key 'amb.a.flux_decay.bias_current_A': expected no "
                         "bias_current_A with current_law = \"exponential\""));
 }
@@ -171,22 +166,22 @@ TEST(ConfigPowerLoss, NumbersAreRequiredWhenEnabledAndInRange) {
   const std::string ramp = kLinearised +
                            "bias_source = \"permanent_magnet\"\n[amb.a.flux_decay]\n"
                            "enabled = true\ncurrent_law = \"slew_limited_ramp\"\n";
-  EXPECT_THAT(ErrorOf(ramp), HasSubstr("missing key 'amb.a.flux_decay.slew_rate_A_per_s'"));
-  EXPECT_THAT(ErrorOf(ramp + "slew_rate_A_per_s = 0.0\n"),
+  EXPECT_THAT(ConfigErrorOf(ramp), HasSubstr("missing key 'amb.a.flux_decay.slew_rate_A_per_s'"));
+  EXPECT_THAT(ConfigErrorOf(ramp + "slew_rate_A_per_s = 0.0\n"),
               HasSubstr("test.toml:20: key 'amb.a.flux_decay.slew_rate_A_per_s': expected a "
                         "positive number (A/s), found 0"));
-  EXPECT_THAT(ErrorOf(ramp + "slew_rate_A_per_s = inf\n"),
+  EXPECT_THAT(ConfigErrorOf(ramp + "slew_rate_A_per_s = inf\n"),
               HasSubstr("test.toml:20: key 'amb.a.flux_decay.slew_rate_A_per_s': expected a "
                         "positive number (A/s), found inf"));
   const std::string hold = kLinearised +
                            "[amb.a.flux_decay]\nenabled = true\ncurrent_law = "
                            "\"hold_then_exponential\"\ntime_constant_s = 1e-3\n";
-  EXPECT_THAT(ErrorOf(hold), HasSubstr("missing key 'amb.a.flux_decay.hold_time_s'"));
-  EXPECT_THAT(ErrorOf(hold + "hold_time_s = -1e-3\n"),
+  EXPECT_THAT(ConfigErrorOf(hold), HasSubstr("missing key 'amb.a.flux_decay.hold_time_s'"));
+  EXPECT_THAT(ConfigErrorOf(hold + "hold_time_s = -1e-3\n"),
               HasSubstr("test.toml:20: key 'amb.a.flux_decay.hold_time_s': expected a "
                         "non-negative number (s), found -0.001"));
-  EXPECT_THAT(ErrorOf(kLinearised + "[amb.a.flux_decay]\nenabled = true\ncurrent_law = "
-                                    "\"hold_then_exponential\"\nhold_time_s = 1e-3\n"),
+  EXPECT_THAT(ConfigErrorOf(kLinearised + "[amb.a.flux_decay]\nenabled = true\ncurrent_law = "
+                                          "\"hold_then_exponential\"\nhold_time_s = 1e-3\n"),
               HasSubstr("missing key 'amb.a.flux_decay.time_constant_s'"));
 }
 
@@ -195,17 +190,17 @@ TEST(ConfigPowerLoss, TheRampsBiasCurrentOnlyWhereTheLawLacksOne) {
       "[amb.a.flux_decay]\nenabled = true\ncurrent_law = \"slew_limited_ramp\"\n"
       "slew_rate_A_per_s = 10.0\n";
   // Linearised law, electromagnet bias: the coils' I0 is needed and must be positive.
-  EXPECT_THAT(ErrorOf(kLinearised + ramp),
+  EXPECT_THAT(ConfigErrorOf(kLinearised + ramp),
               HasSubstr("missing key 'amb.a.flux_decay.bias_current_A'"));
-  EXPECT_THAT(ErrorOf(kLinearised + ramp + "bias_current_A = -2.0\n"),
+  EXPECT_THAT(ConfigErrorOf(kLinearised + ramp + "bias_current_A = -2.0\n"),
               HasSubstr("test.toml:20: key 'amb.a.flux_decay.bias_current_A': expected a "
                         "positive number (A), found -2"));
   // The electromagnet law has its own; a permanent magnet does not ramp.
-  EXPECT_THAT(ErrorOf(kElectromagnet + ramp + "bias_current_A = 2.0\n"),
+  EXPECT_THAT(ConfigErrorOf(kElectromagnet + ramp + "bias_current_A = 2.0\n"),
               HasSubstr("key 'amb.a.flux_decay.bias_current_A': expected no bias_current_A "
                         "with law = \"electromagnet\""));
-  EXPECT_THAT(ErrorOf(kLinearised + "bias_source = \"permanent_magnet\"\n" + ramp +
-                      "bias_current_A = 2.0\n"),
+  EXPECT_THAT(ConfigErrorOf(kLinearised + "bias_source = \"permanent_magnet\"\n" + ramp +
+                            "bias_current_A = 2.0\n"),
               HasSubstr("test.toml:21: key 'amb.a.flux_decay.bias_current_A': expected no "
                         "bias_current_A with bias_source = \"permanent_magnet\""));
 }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "io/config_loader.hpp"
+#include "test_configs.hpp"
 
 namespace ambdrop {
 namespace {
@@ -21,14 +22,7 @@ transverse_inertia_kg_m2 = 0.1
 centre_of_mass_m = 0.2
 )";
 
-std::string ErrorOf(const std::string& text) {
-  try {
-    LoadConfigFromString(text, "test.toml");
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using testing::ConfigErrorOf;
 
 TEST(ConfigRealtime, DefaultsWithoutTheTable) {
   const RealtimeConfig r = LoadConfigFromString(kRigid, "test.toml").realtime;
@@ -61,18 +55,19 @@ TEST(ConfigRealtime, OverridesApply) {
 }
 
 TEST(ConfigRealtime, Rules) {
-  EXPECT_THAT(ErrorOf(kRigid + "[realtime]\npriority = 100\n"),
+  EXPECT_THAT(ConfigErrorOf(kRigid + "[realtime]\npriority = 100\n"),
               HasSubstr("test.toml:10: key 'realtime.priority'"));
-  EXPECT_THAT(ErrorOf(kRigid + "[realtime]\npriority = 1.5\n"),
+  EXPECT_THAT(ConfigErrorOf(kRigid + "[realtime]\npriority = 1.5\n"),
               HasSubstr("key 'realtime.priority'"));
-  EXPECT_THAT(ErrorOf(kRigid + "[realtime]\ncpu = -2\n"),
+  EXPECT_THAT(ConfigErrorOf(kRigid + "[realtime]\ncpu = -2\n"),
               HasSubstr("test.toml:10: key 'realtime.cpu'"));
-  EXPECT_THAT(ErrorOf(kRigid + "[realtime]\nspin_s = -1e-6\n"),
+  EXPECT_THAT(ConfigErrorOf(kRigid + "[realtime]\nspin_s = -1e-6\n"),
               HasSubstr("test.toml:10: key 'realtime.spin_s'"));
-  EXPECT_THAT(ErrorOf(kRigid + "[realtime]\nspin_s = 0.5\n"), HasSubstr("key 'realtime.spin_s'"));
-  EXPECT_THAT(ErrorOf(kRigid + "[realtime]\nenforce = 1\n"),
+  EXPECT_THAT(ConfigErrorOf(kRigid + "[realtime]\nspin_s = 0.5\n"),
+              HasSubstr("key 'realtime.spin_s'"));
+  EXPECT_THAT(ConfigErrorOf(kRigid + "[realtime]\nenforce = 1\n"),
               HasSubstr("test.toml:10: key 'realtime.enforce'"));
-  EXPECT_THAT(ErrorOf(kRigid + "[realtime]\nspin_us = 20\n"),
+  EXPECT_THAT(ConfigErrorOf(kRigid + "[realtime]\nspin_us = 20\n"),
               HasSubstr("unknown key 'realtime.spin_us'"));
 }
 

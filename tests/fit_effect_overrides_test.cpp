@@ -19,23 +19,6 @@
 namespace ambdrop {
 namespace {
 
-// Every rig in configs/ (the scenarios are runs of these rigs).
-std::vector<std::string> Rigs() {
-  std::vector<std::string> rigs;
-  for (const auto& entry : std::filesystem::directory_iterator(testing::ConfigPath(""))) {
-    if (entry.path().extension() == ".toml") rigs.push_back(entry.path().filename().string());
-  }
-  std::sort(rigs.begin(), rigs.end());
-  return rigs;
-}
-
-const ConfigKey* Find(const std::vector<ConfigKey>& keys, const std::string& path) {
-  for (const ConfigKey& k : keys) {
-    if (k.path == path) return &k;
-  }
-  return nullptr;
-}
-
 // The value sets an effect is applied at: its probe, its first starts, and each parameter at
 // either bound (the fit searches the whole box, so the config must take all of it).
 std::vector<std::vector<double>> Corners(const Effect& e) {
@@ -55,7 +38,7 @@ std::vector<std::vector<double>> Corners(const Effect& e) {
 
 TEST(FitEffectOverrides, EveryLineIsReadBackExactlyOnEveryRig) {
   int effects = 0;
-  for (const std::string& rig : Rigs()) {
+  for (const std::string& rig : testing::RigConfigFiles()) {
     SCOPED_TRACE(rig);
     const ConfigVariants variants = testing::LoadTestVariants(rig);
     for (const Effect& e : EffectLibrary(variants.declared())) {
@@ -79,7 +62,7 @@ TEST(FitEffectOverrides, EveryLineIsReadBackExactlyOnEveryRig) {
           double number = 0.0;
           const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), number);
           if (error != std::errc() || end != text.data() + text.size()) continue;  // a switch
-          const ConfigKey* key = Find(applied.keys, path);
+          const ConfigKey* key = FindKey(applied.keys, path);
           ASSERT_NE(key, nullptr) << line << ": no reader took it";
           EXPECT_EQ(key->value, number) << line << ": read back as " << key->value;
           EXPECT_EQ(key->location.rfind("--set ", 0), 0u) << line << " came from " << key->location;
@@ -93,7 +76,7 @@ TEST(FitEffectOverrides, EveryLineIsReadBackExactlyOnEveryRig) {
 // At its probe, an effect moves some number the model reads; the declared config does not
 // already hold it (an effect that changes nothing could not be fitted).
 TEST(FitEffectOverrides, EveryEffectChangesTheModelAtItsProbe) {
-  for (const std::string& rig : Rigs()) {
+  for (const std::string& rig : testing::RigConfigFiles()) {
     SCOPED_TRACE(rig);
     const ConfigVariants variants = testing::LoadTestVariants(rig);
     const std::vector<ConfigKey>& declared = variants.declared().keys;
@@ -101,7 +84,7 @@ TEST(FitEffectOverrides, EveryEffectChangesTheModelAtItsProbe) {
       const LoadedConfig applied = variants.With(e.overrides(e.probe));
       bool changed = false;
       for (const ConfigKey& k : applied.keys) {
-        const ConfigKey* before = Find(declared, k.path);
+        const ConfigKey* before = FindKey(declared, k.path);
         changed |= before == nullptr || before->value != k.value;
       }
       EXPECT_TRUE(changed) << e.name << " at its probe leaves every number as declared";

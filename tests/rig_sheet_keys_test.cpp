@@ -36,20 +36,7 @@ centre_of_mass_m = 0.2
 position_m = 0.1
 )";
 
-std::string ErrorOf(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  try {
-    LoadConfigFromString(text, "test.toml", overrides);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
-const ConfigKey* FindKey(const std::vector<ConfigKey>& keys, const std::string& path) {
-  const auto it =
-      std::find_if(keys.begin(), keys.end(), [&](const ConfigKey& k) { return k.path == path; });
-  return it == keys.end() ? nullptr : &*it;
-}
+using testing::ConfigErrorOf;
 
 // ---- 1. A sensor's gain and offset per axis ---------------------------------------------------
 
@@ -84,7 +71,7 @@ offset_y_m = -4e-6
   EXPECT_EQ(moved.AxisGain(0), 1.0);
   EXPECT_EQ(moved.AxisGain(1), 1.1);
   // Numbers still checked.
-  EXPECT_THAT(ErrorOf(kRigid + "offset_x_m = \"a\"\n"),
+  EXPECT_THAT(ConfigErrorOf(kRigid + "offset_x_m = \"a\"\n"),
               HasSubstr("test.toml:11: key 'sensor.a.offset_x_m': expected"));
 }
 
@@ -103,37 +90,37 @@ bias_current_A = 2.0
 
 TEST(RigSheetKeys, DisabledSaturationNeedsNoFluxDensity) {
   const std::string table = kElectromagnetAmb + "[amb.a.electromagnet.saturation]\n";
-  EXPECT_EQ(ErrorOf(table + "enabled = false\n"), "no error");
-  EXPECT_THAT(ErrorOf(table + "enabled = false\nflux_density_T = -1.0\n"),
+  EXPECT_EQ(ConfigErrorOf(table + "enabled = false\n"), "no error");
+  EXPECT_THAT(ConfigErrorOf(table + "enabled = false\nflux_density_T = -1.0\n"),
               HasSubstr("key 'amb.a.electromagnet.saturation.flux_density_T': expected a "
                         "positive number"));
-  EXPECT_THAT(ErrorOf(table + "enabled = true\n"),
+  EXPECT_THAT(ConfigErrorOf(table + "enabled = true\n"),
               HasSubstr("missing key 'amb.a.electromagnet.saturation.flux_density_T'"));
 }
 
 TEST(RigSheetKeys, DisabledFluxDecayNeedsNoTimeConstant) {
   const std::string table = kElectromagnetAmb + "[amb.a.flux_decay]\n";
-  EXPECT_EQ(ErrorOf(table + "enabled = false\n"), "no error");
-  EXPECT_THAT(ErrorOf(table + "enabled = false\ntime_constant_s = 0.0\n"),
+  EXPECT_EQ(ConfigErrorOf(table + "enabled = false\n"), "no error");
+  EXPECT_THAT(ConfigErrorOf(table + "enabled = false\ntime_constant_s = 0.0\n"),
               HasSubstr("key 'amb.a.flux_decay.time_constant_s': expected a positive number"));
-  EXPECT_THAT(ErrorOf(table + "enabled = true\n"),
+  EXPECT_THAT(ConfigErrorOf(table + "enabled = true\n"),
               HasSubstr("missing key 'amb.a.flux_decay.time_constant_s'"));
 }
 
 TEST(RigSheetKeys, DisabledSensorNoiseNeedsNoStdDev) {
   const std::string table = kRigid + "[sensor.a.noise]\n";
-  EXPECT_EQ(ErrorOf(table + "enabled = false\n"), "no error");
-  EXPECT_THAT(ErrorOf(table + "enabled = false\nstd_dev_m = -1e-6\n"),
+  EXPECT_EQ(ConfigErrorOf(table + "enabled = false\n"), "no error");
+  EXPECT_THAT(ConfigErrorOf(table + "enabled = false\nstd_dev_m = -1e-6\n"),
               HasSubstr("key 'sensor.a.noise.std_dev_m': expected a non-negative number"));
-  EXPECT_THAT(ErrorOf(table + "enabled = true\n"), HasSubstr("missing key 'sensor.a.noise"));
+  EXPECT_THAT(ConfigErrorOf(table + "enabled = true\n"), HasSubstr("missing key 'sensor.a.noise"));
 }
 
 TEST(RigSheetKeys, DisabledUnbalanceNeedsNoMass) {
   const std::string table = kRigid + "[unbalance.u]\nposition_m = 0.1\n";
-  EXPECT_EQ(ErrorOf(table + "enabled = false\n"), "no error");
-  EXPECT_THAT(ErrorOf(table + "enabled = false\nmass_kg = -1.0\n"),
+  EXPECT_EQ(ConfigErrorOf(table + "enabled = false\n"), "no error");
+  EXPECT_THAT(ConfigErrorOf(table + "enabled = false\nmass_kg = -1.0\n"),
               HasSubstr("key 'unbalance.u.mass_kg': expected a non-negative number"));
-  EXPECT_THAT(ErrorOf(table + "enabled = true\neccentricity_m = 1e-3\n"),
+  EXPECT_THAT(ConfigErrorOf(table + "enabled = true\neccentricity_m = 1e-3\n"),
               HasSubstr("missing key 'unbalance.u.mass_kg'"));
 }
 
@@ -148,8 +135,8 @@ gain = 1
 [controller.amplifier]
 enabled = false
 )";
-  EXPECT_EQ(ErrorOf(linear), "no error");
-  EXPECT_THAT(ErrorOf(linear + "bandwidth_Hz = -5.0\n"),
+  EXPECT_EQ(ConfigErrorOf(linear), "no error");
+  EXPECT_THAT(ConfigErrorOf(linear + "bandwidth_Hz = -5.0\n"),
               HasSubstr("key 'controller.amplifier.bandwidth_Hz': expected a positive number"));
 }
 
@@ -268,7 +255,7 @@ bias_current_A = 2.0
 }
 
 TEST(RigSheetKeys, ElectromagnetConstantExcludesTheGeometry) {
-  EXPECT_THAT(ErrorOf(kElectromagnetAmb, {"amb.a.electromagnet.constant_N_m2_per_A2=7.7e-7"}),
+  EXPECT_THAT(ConfigErrorOf(kElectromagnetAmb, {"amb.a.electromagnet.constant_N_m2_per_A2=7.7e-7"}),
               HasSubstr("key 'amb.a.electromagnet.pole_area_m2': expected no pole_area_m2 next to "
                         "constant_N_m2_per_A2"));
   const std::string direct = kRigid + R"(
@@ -280,17 +267,18 @@ constant_N_m2_per_A2 = 7.7e-7
 nominal_gap_m = 0.25e-3
 bias_current_A = 2.0
 )";
-  EXPECT_EQ(ErrorOf(direct), "no error");
-  EXPECT_THAT(ErrorOf(direct + "pole_half_angle_rad = 0.3\n"),
+  EXPECT_EQ(ConfigErrorOf(direct), "no error");
+  EXPECT_THAT(ConfigErrorOf(direct + "pole_half_angle_rad = 0.3\n"),
               HasSubstr("test.toml:19: key 'amb.a.electromagnet.pole_half_angle_rad': expected "
                         "no pole_half_angle_rad next to constant_N_m2_per_A2"));
-  EXPECT_THAT(ErrorOf(direct, {"amb.a.electromagnet.constant_N_m2_per_A2=-1.0"}),
+  EXPECT_THAT(ConfigErrorOf(direct, {"amb.a.electromagnet.constant_N_m2_per_A2=-1.0"}),
               HasSubstr("expected a positive number (N m^2/A^2), found -1"));
   // Saturation caps the flux through the pole face: without the face it cannot be evaluated.
-  EXPECT_THAT(ErrorOf(direct + "[amb.a.electromagnet.saturation]\nenabled = true\n"
-                               "flux_density_T = 1.2\n"),
+  EXPECT_THAT(ConfigErrorOf(direct + "[amb.a.electromagnet.saturation]\nenabled = true\n"
+                                     "flux_density_T = 1.2\n"),
               HasSubstr("saturation needs the pole geometry"));
-  EXPECT_EQ(ErrorOf(direct + "[amb.a.electromagnet.saturation]\nenabled = false\n"), "no error");
+  EXPECT_EQ(ConfigErrorOf(direct + "[amb.a.electromagnet.saturation]\nenabled = false\n"),
+            "no error");
 }
 
 }  // namespace

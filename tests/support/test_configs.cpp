@@ -1,5 +1,8 @@
 #include "test_configs.hpp"
 
+#include <algorithm>
+#include <filesystem>
+
 namespace ambdrop::testing {
 
 std::string ConfigPath(const std::string& file_name) {
@@ -9,6 +12,24 @@ std::string ConfigPath(const std::string& file_name) {
 ModelParams LoadTestConfig(const std::string& file_name,
                            const std::vector<std::string>& overrides) {
   return LoadConfig(ConfigPath(file_name), overrides).params;
+}
+
+std::vector<std::string> RigConfigFiles() {
+  std::vector<std::string> rigs;
+  for (const auto& entry : std::filesystem::directory_iterator(ConfigPath(""))) {
+    if (entry.path().extension() == ".toml") rigs.push_back(entry.path().filename().string());
+  }
+  std::sort(rigs.begin(), rigs.end());
+  return rigs;
+}
+
+std::string ConfigErrorOf(const std::string& text, const std::vector<std::string>& overrides) {
+  try {
+    LoadConfigFromString(text, "test.toml", overrides);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "no error";
 }
 
 ConfigVariants LoadTestVariants(const std::string& file_name,

@@ -15,6 +15,12 @@ std::string ConfigPath(const std::string& file_name);
 ModelParams LoadTestConfig(const std::string& file_name,
                            const std::vector<std::string>& overrides = {});
 
+/// The file names of every rig in configs/ (the scenarios are runs of these), sorted.
+std::vector<std::string> RigConfigFiles();
+
+/// The ConfigError a config text (named test.toml) with `overrides` raises, or "no error".
+std::string ConfigErrorOf(const std::string& text, const std::vector<std::string>& overrides = {});
+
 /// The same kept as a tree that effects' --set overrides are applied to (what `ambdrop fit` does).
 ConfigVariants LoadTestVariants(const std::string& file_name,
                                 const std::vector<std::string>& overrides = {});

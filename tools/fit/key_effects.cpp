@@ -26,13 +26,6 @@ std::vector<double> StartsAround(double declared, double lower, double upper) {
 
 }  // namespace
 
-const ConfigKey* FindKey(const std::vector<ConfigKey>& keys, const std::string& path) {
-  for (const ConfigKey& k : keys) {
-    if (k.path == path) return &k;
-  }
-  return nullptr;
-}
-
 Effect DeclaredValueOff(const ConfigKey& key, KeyEffectInfo info) {
   const FitRange range = DefaultFitRange(key);
   Effect e;

@@ -28,7 +28,4 @@ Effect DeclaredValueOff(const ConfigKey& key, KeyEffectInfo info);
 /// The parameter is "scale" (or the key's name for the zero case).
 Effect DeclaredValuesTogether(const std::vector<ConfigKey>& keys, KeyEffectInfo info);
 
-/// The key with this path among `keys`; nullptr if it was not read.
-const ConfigKey* FindKey(const std::vector<ConfigKey>& keys, const std::string& path);
-
 }  // namespace ambdrop
