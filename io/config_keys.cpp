@@ -99,10 +99,10 @@ KeyClass ClassOfKey(std::string_view path) {
   if (StartsWith(path, "can.") || StartsWith(path, "realtime.")) return KeyClass::kInterface;
   if (StartsWith(path, "measurement.")) return KeyClass::kMeasurement;
   // How the sensors are observed, not where or how they sit: noise and its seed, quantisation.
-  if (HasSegment(path, "noise") || HasSegment(path, "quantisation")) {
+  const std::string_view last = LastSegment(path);
+  if (HasSegment(path, "noise") || last.starts_with("quantisation")) {
     return KeyClass::kMeasurement;
   }
-  const std::string_view last = LastSegment(path);
   if (last == "seed" || last == "elements" || last == "modes") return KeyClass::kSolver;
   return KeyClass::kPhysical;
 }
@@ -111,7 +111,13 @@ FitRange DefaultFitRange(const ConfigKey& key) {
   const double v = key.value;
   const double span = ZeroSpan(key.unit);
   FitRange r;
-  if (key.unit == "rad") {
+  const std::string_view last = LastSegment(key.path);
+  if (key.unit == "m" && (last == "position_m" || last == "centre_of_mass_m")) {
+    // A station along the shaft: off by what a drawing or a mounting gets wrong, not by a
+    // factor of two (which would move it past its neighbours).
+    const double half_width = std::max(0.1 * std::abs(v), 0.01);
+    r = {v - half_width, v + half_width};
+  } else if (key.unit == "rad") {
     r = {v - std::numbers::pi, v + std::numbers::pi};  // an angle: any value
   } else if (key.lower >= 0.0) {
     // A size: off by a factor of two either way, or from nothing to a plausible size.

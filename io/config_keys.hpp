@@ -32,6 +32,9 @@ struct ConfigKey {
   bool lower_inclusive = true;
   bool upper_inclusive = true;
   std::string location;  ///< "FILE:LINE" or "--set ..."; "" for a default
+  /// false: its table is switched off (`enabled = false` beside it), so the model does not use
+  /// it until the table is switched on.
+  bool in_force = true;
 };
 
 /// The unit a key's name carries ("m" for "clearance_m", "Hz" for "cutoff_Hz"), "" if none.
@@ -41,8 +44,9 @@ std::string KeyUnit(std::string_view key);
 KeyClass ClassOfKey(std::string_view path);
 
 /// A range a fit may search for a key "whose declared value is off": relative to the declared
-/// value (a factor of 2 either way for a size, a span either side for a signed quantity), or,
-/// for a key declared 0, a physical span by unit class; always inside the readers' range.
+/// value (a factor of 2 either way for a size, a span either side for a signed quantity, 10 %
+/// or 1 cm either side for a station along the shaft), or, for a key declared 0, a physical
+/// span by unit class; always inside the readers' range.
 struct FitRange {
   double lower = 0.0;
   double upper = 0.0;

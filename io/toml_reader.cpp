@@ -203,6 +203,9 @@ void TableReader::Log(std::string_view key, double value, const NumberRule& rule
   k.lower_inclusive = rule.lower_inclusive;
   k.upper_inclusive = rule.upper_inclusive;
   if (node != nullptr) k.location = NodeLocation(*node, source_name_);
+  if (const toml::node* enabled = table_->get("enabled")) {
+    if (const auto* flag = enabled->as_boolean()) k.in_force = flag->get();
+  }
   log_->Record(std::move(k));
 }
 

@@ -43,6 +43,25 @@ TEST(ConfigKeys, ClassesFollowWhatAKeyDescribes) {
   EXPECT_EQ(ClassOfKey("sensor.de.lag.delay_s"), KeyClass::kPhysical);
   // A segment, not a substring: a rig may name a sensor "noisemaker".
   EXPECT_EQ(ClassOfKey("sensor.noisemaker.gain"), KeyClass::kPhysical);
+  // How finely the ADC reads is the acquisition's, not the machine's.
+  EXPECT_EQ(ClassOfKey("sensor.de.quantisation_m"), KeyClass::kMeasurement);
+}
+
+// A number of a table switched off is read (and checked) but not used: the fit must not offer
+// it as "the declared value is off", as moving it changes nothing.
+TEST(ConfigKeys, KeysOfASwitchedOffTableAreNotInForce) {
+  const LoadedConfig loaded = LoadConfig(testing::ConfigPath("jarroux2019_industrial_pid.toml"));
+  const auto keys = ByPath(loaded.keys);
+  // [amb.de.flux_decay] enabled = false; [amb.de.electromagnet.saturation] enabled = true.
+  ASSERT_TRUE(keys.count("amb.de.flux_decay.time_constant_s"));
+  EXPECT_FALSE(keys.at("amb.de.flux_decay.time_constant_s").in_force);
+  ASSERT_TRUE(keys.count("amb.de.electromagnet.saturation.flux_density_T"));
+  EXPECT_TRUE(keys.at("amb.de.electromagnet.saturation.flux_density_T").in_force);
+  EXPECT_TRUE(keys.at("amb.de.electromagnet.bias_current_A").in_force);
+  // Switched on from the command line, it is in force.
+  const LoadedConfig on = LoadConfig(testing::ConfigPath("jarroux2019_industrial_pid.toml"),
+                                     {"amb.de.flux_decay.enabled=true"});
+  EXPECT_TRUE(ByPath(on.keys).at("amb.de.flux_decay.time_constant_s").in_force);
 }
 
 TEST(ConfigKeys, EveryRigRecordsItsNumbersWithUnitsAndClasses) {

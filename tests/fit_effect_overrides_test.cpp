@@ -41,7 +41,7 @@ TEST(FitEffectOverrides, EveryLineIsReadBackExactlyOnEveryRig) {
   for (const std::string& rig : testing::RigConfigFiles()) {
     SCOPED_TRACE(rig);
     const ConfigVariants variants = testing::LoadTestVariants(rig);
-    for (const Effect& e : EffectLibrary(variants.declared())) {
+    for (const Effect& e : EffectLibrary(variants)) {
       SCOPED_TRACE(e.name);
       ++effects;
       for (const std::vector<double>& values : Corners(e)) {
@@ -80,7 +80,7 @@ TEST(FitEffectOverrides, EveryEffectChangesTheModelAtItsProbe) {
     SCOPED_TRACE(rig);
     const ConfigVariants variants = testing::LoadTestVariants(rig);
     const std::vector<ConfigKey>& declared = variants.declared().keys;
-    for (const Effect& e : EffectLibrary(variants.declared())) {
+    for (const Effect& e : EffectLibrary(variants)) {
       const LoadedConfig applied = variants.With(e.overrides(e.probe));
       bool changed = false;
       for (const ConfigKey& k : applied.keys) {

@@ -59,7 +59,7 @@ Fitted Fit(const Rig& rig, const std::vector<std::string>& effect,
   const ModelParams& declared = variants.declared().params;
   const RecordCost cost(declared, made.measurement, made.record, RecordRunOptions{});
   std::vector<Effect> library;
-  for (Effect& e : EffectLibrary(variants.declared())) {
+  for (Effect& e : EffectLibrary(variants)) {
     if (std::find(offered.begin(), offered.end(), e.name) != offered.end()) {
       library.push_back(std::move(e));
     }
@@ -149,7 +149,7 @@ TEST(FitOtherRigs, CatcherBearingRigFindsTheMisalignedTdb) {
 TEST(FitOtherRigs, TheLibraryOffersWhatEachTdbModelUses) {
   const auto names = [](const ConfigVariants& p) {
     std::vector<std::string> n;
-    for (const Effect& e : EffectLibrary(p.declared())) n.push_back(e.name);
+    for (const Effect& e : EffectLibrary(p)) n.push_back(e.name);
     return n;
   };
   const auto has = [](const std::vector<std::string>& n, const char* name) {
@@ -160,7 +160,7 @@ TEST(FitOtherRigs, TheLibraryOffersWhatEachTdbModelUses) {
   const std::vector<std::string> on_balls = names(variants);
   EXPECT_TRUE(has(on_balls, "friction_coefficient"));
   EXPECT_TRUE(has(on_balls, "tdb_drag_torque:front"));
-  for (const Effect& e : EffectLibrary(variants.declared())) {
+  for (const Effect& e : EffectLibrary(variants)) {
     if (e.name != "friction_coefficient") continue;
     const ModelParams p = WithEffects(variants, {&e}, {{0.2}});
     for (std::size_t i = 0; i < p.tdbs.size(); ++i) {

@@ -368,7 +368,7 @@ int main(int argc, char** argv) {
       }
     }
     const ModelParams& declared_params = declared.declared().params;
-    for (const Effect& e : variants ? std::vector<Effect>{} : EffectLibrary(declared.declared())) {
+    for (const Effect& e : variants ? std::vector<Effect>{} : EffectLibrary(declared, true)) {
       const Truth truth = Draw(e, declared_params, &random);
       if (!only.empty() && e.name.find(only) == std::string::npos) continue;
       ++g_case;

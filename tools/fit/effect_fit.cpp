@@ -62,7 +62,7 @@ struct Problem : Eigen::DenseFunctor<double> {
   Eigen::VectorXd Run(const Eigen::VectorXd& z) {
     ++runs;
     --runs_left;
-    return cost.Residual(WithEffects(declared, effects, Values(z)));
+    return ResidualWithEffects(declared, cost, effects, Values(z));
   }
   int operator()(const Eigen::VectorXd& z, Eigen::VectorXd& fvec) {
     if (runs_left <= 0) return -1;  // out of budget: LM stops and keeps the best so far
@@ -110,6 +110,20 @@ std::vector<std::string> EffectOverrides(const std::vector<const Effect*>& effec
 ModelParams WithEffects(const ConfigVariants& declared, const std::vector<const Effect*>& effects,
                         const std::vector<std::vector<double>>& values) {
   return declared.With(EffectOverrides(effects, values)).params;
+}
+
+Eigen::VectorXd ResidualWithEffects(const ConfigVariants& declared, const RecordCost& cost,
+                                    const std::vector<const Effect*>& effects,
+                                    const std::vector<std::vector<double>>& values, bool* refused) {
+  ModelParams params;
+  try {
+    params = WithEffects(declared, effects, values);
+  } catch (const ConfigError&) {
+    if (refused != nullptr) *refused = true;
+    return cost.Unreached();
+  }
+  if (refused != nullptr) *refused = false;
+  return cost.Residual(params);
 }
 
 EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,

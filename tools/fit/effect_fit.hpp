@@ -38,6 +38,14 @@ std::vector<std::string> EffectOverrides(const std::vector<const Effect*>& effec
 ModelParams WithEffects(const ConfigVariants& declared, const std::vector<const Effect*>& effects,
                         const std::vector<std::vector<double>>& values);
 
+/// The residual of the declared model with the effects at `values`. A value the config refuses
+/// (ConfigError: a station moved past its neighbour) gives RecordCost::Unreached(), so that a
+/// search turns away from it instead of stopping; `refused`, if given, says so.
+Eigen::VectorXd ResidualWithEffects(const ConfigVariants& declared, const RecordCost& cost,
+                                    const std::vector<const Effect*>& effects,
+                                    const std::vector<std::vector<double>>& values,
+                                    bool* refused = nullptr);
+
 /// Values an effect's parameters are known to fit well (its own single fit): searches start
 /// there, and also from the parameters' own starts unless `only`.
 struct KnownStart {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <optional>
 #include <tuple>
 #include <utility>
@@ -11,6 +12,7 @@
 #include "io/config_variants.hpp"
 #include "rt_core/limits.hpp"
 #include "tools/fit/key_effects.hpp"
+#include "tools/fit/registry_candidates.hpp"
 
 namespace ambdrop {
 namespace {
@@ -568,7 +570,8 @@ void AddRaceSpinEffects(const LoadedConfig& config, std::vector<Effect>* effects
 
 }  // namespace
 
-std::vector<Effect> EffectLibrary(const LoadedConfig& config) {
+std::vector<Effect> EffectLibrary(const ConfigVariants& variants, bool only_families) {
+  const LoadedConfig& config = variants.declared();
   const ModelParams& declared = config.params;
   std::vector<Effect> effects;
   const double clearance = SmallestClearance(declared);
@@ -618,6 +621,9 @@ std::vector<Effect> EffectLibrary(const LoadedConfig& config) {
     effects.push_back(RibbonDryFriction(t, *ribbon));
     effects.push_back(RibbonCrossCoupling(t, *ribbon));
   }
+  if (only_families) return effects;
+  std::vector<Effect> keys = RegistryCandidates(variants, effects);
+  std::move(keys.begin(), keys.end(), std::back_inserter(effects));
   return effects;
 }
 

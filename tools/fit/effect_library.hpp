@@ -9,6 +9,7 @@
 
 #include "io/config_loader.hpp"
 #include "io/config_measurement.hpp"
+#include "io/config_variants.hpp"
 #include "rt_core/model_params.hpp"
 
 namespace ambdrop {
@@ -46,11 +47,17 @@ struct Effect {
   /// printed by the report as they are. One effect may set several keys (a lag's time constant
   /// is its filter's cutoff).
   std::function<std::vector<std::string>(const std::vector<double>&)> overrides;
+  /// One of the many "the declared value is off" candidates made from the key registry
+  /// (tools/fit/registry_candidates.hpp): one parameter, screened first and fitted only if the
+  /// screening ranks it among the most promising (SelectionRules::screened_fits).
+  bool screened = false;
 };
 
 /// Every effect that applies to this rig, in a fixed order (the order candidates are reported
-/// in). The config's key registry gives the ranges of the "declared value is off" effects.
-std::vector<Effect> EffectLibrary(const LoadedConfig& declared);
+/// in): the hand-made families, then (unless `only_families`) "the declared value is off" for
+/// every other physical key of the config (RegistryCandidates). The config's key registry gives
+/// the ranges of the "declared value is off" effects.
+std::vector<Effect> EffectLibrary(const ConfigVariants& declared, bool only_families = false);
 
 /// Effects whose revealing quantities no channel of the record measures.
 bool Decidable(const Effect& effect, const MeasurementParams& measurement);

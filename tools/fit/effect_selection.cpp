@@ -3,12 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <optional>
-#include <thread>
 
+#include "tools/fit/candidate_screen.hpp"
 #include "tools/fit/noise_floor.hpp"
+#include "tools/fit/parallel_for.hpp"
 
 namespace ambdrop {
 namespace {
@@ -20,20 +20,6 @@ double Bic(double sse, std::size_t n, std::size_t k) {
 
 std::size_t Parameters(const EffectFit& f) {
   return f.parameters.size();
-}
-
-// Runs job(i) for i in [0, count) on `threads` threads; results land by index, so the outcome
-// does not depend on which thread ran what.
-template <typename Job>
-void ParallelFor(std::size_t count, int threads, const Job& job) {
-  std::atomic<std::size_t> next{0};
-  const auto worker = [&] {
-    for (std::size_t i = next++; i < count; i = next++) job(i);
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::max(threads, 1); ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
 }
 
 // How far the declared model's prediction moves when the rotor's levitated orbit is shifted by
@@ -145,8 +131,18 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   }
   const RecordCost* search = screen ? &*screen : nullptr;
 
-  // Singles.
+  // Singles: the hand-made families each fitted; the registry's many candidates screened
+  // first (two runs each) and only the most promising fitted.
   std::vector<CandidateScore> singles(library.size());
+  std::vector<Screening> screenings(library.size());
+  const auto fit_single = [&](std::size_t i, const std::vector<KnownStart>& known) {
+    CandidateScore& c = singles[i];
+    c.tried = true;
+    c.fit = FitEffects(declared, cost, {&library[i]}, rules.max_runs_per_start, search, known);
+    c.rms_after = OverallRms(cost, c.fit.sse);
+    c.bic = Bic(c.fit.sse, cost.size(), Parameters(c.fit));
+    c.delta_bic = c.bic - s.bic_before;
+  };
   ParallelFor(library.size(), rules.threads, [&](std::size_t i) {
     const Effect& e = library[i];
     CandidateScore& c = singles[i];
@@ -155,8 +151,18 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
     c.description = e.description;
     c.decidable = Decidable(e, cost.measurement());
     if (!c.decidable) return;
+    if (e.screened && e.parameters.size() == 1) {
+      c.screened = true;
+      // At the floor nothing could be chosen: the screening's runs would be wasted.
+      if (at_floor) return;
+      screenings[i] = ScreenCandidate(declared, cost, e, residual_before);
+      c.reach = screenings[i].reach;
+      c.decidable = c.reach > s.limit;
+      c.screened_rms = OverallRms(cost, screenings[i].predicted_sse);
+      return;
+    }
     if (!e.probe.empty()) {
-      const Eigen::VectorXd probed = cost.Residual(WithEffects(declared, {&e}, {e.probe}));
+      const Eigen::VectorXd probed = ResidualWithEffects(declared, cost, {&e}, {e.probe});
       c.reach = OverallRms(cost, (probed - residual_before).squaredNorm());
       // Even strong, it would stay within the limit: no fit could tell it from its absence.
       c.decidable = c.reach > s.limit;
@@ -165,14 +171,35 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
     // At the floor no candidate could be chosen: its fit would only cost runs (minutes for
     // the full library on a flexible rotor).
     if (at_floor) return;
-    c.tried = true;
-    c.fit = FitEffects(declared, cost, {&e}, rules.max_runs_per_start, search);
-    c.rms_after = OverallRms(cost, c.fit.sse);
-    c.bic = Bic(c.fit.sse, cost.size(), Parameters(c.fit));
-    c.delta_bic = c.bic - s.bic_before;
+    fit_single(i, {});
   });
-  const auto material = [&](double before, double after, double delta_bic) {
-    return after * rules.min_cut <= before && delta_bic <= -rules.min_delta_bic;
+  // The screened candidates worth a full fit: those whose predicted cut could be accepted,
+  // best first, at most SelectionRules::screened_fits; each searched from its screened best
+  // value too.
+  std::vector<std::size_t> promising;
+  for (std::size_t i = 0; i < singles.size(); ++i) {
+    if (singles[i].screened && singles[i].decidable && !at_floor &&
+        screenings[i].predicted_sse * rules.min_cut * rules.min_cut <= sse_before) {
+      promising.push_back(i);
+    }
+  }
+  std::stable_sort(promising.begin(), promising.end(), [&](std::size_t a, std::size_t b) {
+    return screenings[a].predicted_sse < screenings[b].predicted_sse;
+  });
+  if (promising.size() > static_cast<std::size_t>(std::max(rules.screened_fits, 0))) {
+    promising.resize(static_cast<std::size_t>(std::max(rules.screened_fits, 0)));
+  }
+  ParallelFor(promising.size(), rules.threads, [&](std::size_t k) {
+    const std::size_t i = promising[k];
+    fit_single(i, {{{screenings[i].best_value}, false}});
+  });
+  s.decidable_candidates = static_cast<int>(std::count_if(
+      singles.begin(), singles.end(), [](const CandidateScore& c) { return c.decidable; }));
+  // The best of M tries beats noise by about 2 ln M per parameter (SelectionRules).
+  const double per_parameter = 2.0 * std::log(std::max(s.decidable_candidates, 1));
+  const auto material = [&](double before, double after, double delta_bic, std::size_t parameters) {
+    return after * rules.min_cut <= before &&
+           delta_bic <= -(rules.min_delta_bic + per_parameter * static_cast<double>(parameters));
   };
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < singles.size(); ++i) {
@@ -213,7 +240,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
                             : p.magnitude ? 1e-3 * std::max(std::abs(v[e][i]), 1e-3 * range)
                                           : 1e-3 * range;
         v[e][i] += v[e][i] + step <= p.upper || p.periodic ? step : -step;
-        nudged += (cost.Residual(WithEffects(declared, effects, v)) - at).squaredNorm();
+        nudged += (ResidualWithEffects(declared, cost, effects, v) - at).squaredNorm();
         ++count;
       }
     }
@@ -225,7 +252,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   double limit_after = s.limit;
   if (!order.empty() && !at_floor) {
     CandidateScore& best = s.candidates[order.front()];
-    if (material(s.rms_before, best.rms_after, best.delta_bic)) {
+    if (material(s.rms_before, best.rms_after, best.delta_bic, Parameters(best.fit))) {
       best.accepted = true;
       s.chosen = {best.name};
       s.chosen_fit = best.fit;
@@ -267,7 +294,8 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
         };
         std::size_t pick = pairs.size();
         for (std::size_t p = 0; p < pairs.size(); ++p) {
-          if (material(best.rms_after, pairs[p].rms_after, pairs[p].delta_bic) &&
+          if (material(best.rms_after, pairs[p].rms_after, pairs[p].delta_bic,
+                       Parameters(pairs[p].fit) - Parameters(best.fit)) &&
               beyond_chaos(pairs[p].rms_after) &&
               (pick == pairs.size() || pairs[p].bic < pairs[pick].bic)) {
             pick = p;

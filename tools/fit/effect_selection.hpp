@@ -13,8 +13,12 @@
 namespace ambdrop {
 
 struct SelectionRules {
-  double min_cut = 1.25;        ///< rms_before / rms_after an accepted effect must reach
-  double min_delta_bic = 10.0;  ///< and how much it must lower the BIC
+  double min_cut = 1.25;  ///< rms_before / rms_after an accepted effect must reach
+  /// And how much it must lower the BIC, plus 2 ln M per added parameter for M candidates
+  /// that could reveal something in this record: the best of M tries fits noise better by
+  /// about that much (the maximum of M chi-square variables), so that a library ten times as
+  /// large does not invent more effects.
+  double min_delta_bic = 10.0;
   /// Left within this many times the noise floor (in quadrature with the tolerance), the
   /// residual is explained: the floor is itself estimated from the record.
   double explained_over_floor = 1.25;
@@ -38,6 +42,9 @@ struct SelectionRules {
   int pair_partners = 4;
   /// A single effect whose residual is within this factor of the chosen ones' is equivalent.
   double equivalent_margin = 1.1;
+  /// Screened candidates (Effect::screened) fitted in full: the best this many by the
+  /// screening's predicted residual, among those that could be accepted at all.
+  int screened_fits = 6;
   int threads = 2;
   int max_runs_per_start = 40;
 };
@@ -53,8 +60,13 @@ struct CandidateScore {
   /// relative RMS; NaN where not probed.
   double reach = std::numeric_limits<double>::quiet_NaN();
   /// Fitted. false when undecidable, or when the declared model already agrees with the record
-  /// within the agreement limit (fitting then could only cost runs: no effect would be chosen).
+  /// within the agreement limit (fitting then could only cost runs: no effect would be chosen),
+  /// or a screened candidate the screening did not rank among the best.
   bool tried = false;
+  /// Screened (Effect::screened): `reach` is the screening's, and `screened_rms` the overall
+  /// relative RMS the screening predicts at its best value.
+  bool screened = false;
+  double screened_rms = std::numeric_limits<double>::quiet_NaN();
   EffectFit fit;
   double rms_after = 0.0;  ///< overall relative RMS with it
   double bic = 0.0;
@@ -94,7 +106,10 @@ struct Selection {
   double limit_after = 0.0;
   bool limit_after_capped = false;         ///< the cap, not model_floor_after, set limit_after
   std::vector<CandidateScore> candidates;  ///< singles in library order, then pairs
-  std::vector<std::string> chosen;         ///< effect names
+  /// Candidates that could reveal something in this record (decidable singles): the M of the
+  /// selection rule's 2 ln M.
+  int decidable_candidates = 0;
+  std::vector<std::string> chosen;  ///< effect names
   /// Single effects of other families than the first chosen that fit the record as well as
   /// the chosen ones (residual within SelectionRules::equivalent_margin of theirs): the record
   /// cannot tell them apart, and the verdict says so.

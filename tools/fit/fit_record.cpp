@@ -27,7 +27,7 @@ std::unique_ptr<FitResult> FitRecord(const ConfigVariants& config, const Measure
                               : fmt::format(" ({})", fmt::join(fit->left_out, ", "))));
   }
   fit->before = cost.Simulate(declared);
-  fit->library = EffectLibrary(config.declared());
+  fit->library = EffectLibrary(config);
   fit->selection = SelectEffects(config, cost, fit->library, cost.NoiseFloor(), options.rules);
   for (const std::string& name : fit->selection.chosen) {
     for (const Effect& e : fit->library) {

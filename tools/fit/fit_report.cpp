@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "io/json_writer.hpp"
@@ -151,6 +152,7 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   }
   json.EndArray();
 
+  json.Key("decidable_candidates").Integer(s.decidable_candidates);
   json.Key("candidates").BeginArray();
   for (const CandidateScore& c : s.candidates) {
     json.BeginObject();
@@ -159,7 +161,9 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     json.Key("decidable").Bool(c.decidable);
     json.Key("suggested_by_signatures").Bool(Suggested(o.before, c.family));
     json.Key("tried").Bool(c.tried);
+    json.Key("screened").Bool(c.screened);
     if (std::isfinite(c.reach)) json.Key("reach").Number(c.reach);
+    if (std::isfinite(c.screened_rms)) json.Key("screened_rms").Number(c.screened_rms);
     if (c.tried) {
       json.Key("rms_after").Number(c.rms_after);
       json.Key("delta_bic").Number(c.delta_bic);
@@ -291,7 +295,19 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
   md +=
       "\n## Candidates\n\n| effect | suggested by the signatures | relative RMS with it | ΔBIC | "
       "accepted |\n|---|---|---|---|---|\n";
+  // The registry's screened candidates that were not fitted are many: summarised below the
+  // table, not a row each.
+  std::vector<const CandidateScore*> screened_only;
+  std::size_t screened_undecidable = 0;
   for (const CandidateScore& c : s.candidates) {
+    if (c.screened && !c.tried) {
+      if (c.decidable && std::isfinite(c.screened_rms)) {
+        screened_only.push_back(&c);
+      } else {
+        ++screened_undecidable;
+      }
+      continue;
+    }
     if (!c.decidable && std::isfinite(c.reach)) {
       md += fmt::format(
           "| {} | | not decidable from this record: even strong, it moves the prediction by {:.2g} "
@@ -312,6 +328,22 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
     md += fmt::format("| {} | {} | {:.4g} | {:.1f} | {} |\n", c.name,
                       Suggested(o.before, c.family) ? "yes" : "", c.rms_after, c.delta_bic,
                       c.accepted ? "yes" : "");
+  }
+  if (!screened_only.empty() || screened_undecidable > 0) {
+    std::stable_sort(screened_only.begin(), screened_only.end(),
+                     [](const CandidateScore* a, const CandidateScore* b) {
+                       return a->screened_rms < b->screened_rms;
+                     });
+    md += fmt::format(
+        "\n{} more candidates, \"the declared value is off\" for the config's other physical "
+        "keys, were screened (two runs each) and not fitted: {} could not move the prediction "
+        "beyond the agreement limit; the others' best predicted relative RMS:",
+        screened_only.size() + screened_undecidable, screened_undecidable);
+    for (std::size_t i = 0; i < screened_only.size() && i < 8; ++i) {
+      md += fmt::format("{} {} ({:.3g})", i == 0 ? "" : ",", screened_only[i]->name,
+                        screened_only[i]->screened_rms);
+    }
+    md += screened_only.size() > 8 ? ", ...\n" : "\n";
   }
   md += "\n## Plots\n\n";
   for (const std::string& p : plots) md += fmt::format("![{}]({})\n\n", p, p);

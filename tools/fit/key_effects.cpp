@@ -27,7 +27,10 @@ std::vector<double> StartsAround(double declared, double lower, double upper) {
 }  // namespace
 
 Effect DeclaredValueOff(const ConfigKey& key, KeyEffectInfo info) {
-  const FitRange range = DefaultFitRange(key);
+  return DeclaredValueOff(key, std::move(info), DefaultFitRange(key));
+}
+
+Effect DeclaredValueOff(const ConfigKey& key, KeyEffectInfo info, FitRange range) {
   Effect e;
   e.name = std::move(info.name);
   e.family = std::move(info.family);
@@ -48,10 +51,23 @@ Effect DeclaredValueOff(const ConfigKey& key, KeyEffectInfo info) {
 }
 
 Effect DeclaredValuesTogether(const std::vector<ConfigKey>& keys, KeyEffectInfo info) {
+  std::vector<FitRange> ranges;
+  for (const ConfigKey& k : keys) ranges.push_back(DefaultFitRange(k));
+  return DeclaredValuesTogether(keys, std::move(info), ranges);
+}
+
+Effect DeclaredValuesTogether(const std::vector<ConfigKey>& keys, KeyEffectInfo info,
+                              const std::vector<FitRange>& ranges) {
   const bool all_zero =
       std::all_of(keys.begin(), keys.end(), [](const ConfigKey& k) { return k.value == 0.0; });
   if (all_zero) {
-    Effect e = DeclaredValueOff(keys.front(), std::move(info));
+    // One common value: inside every key's range.
+    FitRange common = ranges.front();
+    for (const FitRange& r : ranges) {
+      common.lower = std::max(common.lower, r.lower);
+      common.upper = std::min(common.upper, r.upper);
+    }
+    Effect e = DeclaredValueOff(keys.front(), std::move(info), common);
     std::vector<std::string> paths;
     for (const ConfigKey& k : keys) paths.push_back(k.path);
     e.overrides = [paths](const std::vector<double>& v) {
@@ -66,14 +82,39 @@ Effect DeclaredValuesTogether(const std::vector<ConfigKey>& keys, KeyEffectInfo 
   e.family = std::move(info.family);
   e.description = std::move(info.description);
   e.revealed_by = std::move(info.revealed_by);
-  e.parameters = {{"scale", 0.5, 2.0, {1.0, 0.7, 1.4}}};
-  e.probe = {2.0};
-  std::vector<std::pair<std::string, double>> declared;
-  for (const ConfigKey& k : keys) declared.emplace_back(k.path, k.value);
+  // A factor of 2 either way, as far as every key's own range lets the scale go (a key declared
+  // 0 stays 0 whatever the scale).
+  double lower = 0.5, upper = 2.0;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const double v = keys[i].value;
+    if (v > 0.0) {
+      lower = std::max(lower, ranges[i].lower / v);
+      upper = std::min(upper, ranges[i].upper / v);
+    } else if (v < 0.0) {
+      lower = std::max(lower, ranges[i].upper / v);
+      upper = std::min(upper, ranges[i].lower / v);
+    }
+  }
+  e.parameters = {
+      {"scale", lower, upper, {1.0, std::clamp(0.7, lower, upper), std::clamp(1.4, lower, upper)}}};
+  e.probe = {upper - 1.0 >= 1.0 - lower ? upper : lower};
+  struct Declared {
+    std::string path;
+    double value;
+    FitRange range;
+  };
+  std::vector<Declared> declared;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    declared.push_back({keys[i].path, keys[i].value, ranges[i]});
+  }
   e.overrides = [declared](const std::vector<double>& v) {
     std::vector<std::string> out;
-    for (const auto& [path, value] : declared) {
-      out.push_back(path + "=" + OverrideNumber(v[0] * value));
+    for (const Declared& d : declared) {
+      // Clamped: the scale's bound times the value can round just past the key's own.
+      const double scaled = v[0] * d.value;
+      out.push_back(
+          d.path + "=" +
+          OverrideNumber(d.value == 0.0 ? 0.0 : std::clamp(scaled, d.range.lower, d.range.upper)));
     }
     return out;
   };

@@ -22,10 +22,16 @@ struct KeyEffectInfo {
 /// One key's value refitted over its registry fit range (DefaultFitRange), starting at the
 /// declared value. The parameter is the key's own value, named by the key's last segment.
 Effect DeclaredValueOff(const ConfigKey& key, KeyEffectInfo info);
+/// The same over a given range (one the config accepts throughout: RegistryCandidates narrows
+/// the default where other keys bound it, a station that would leave the shaft).
+Effect DeclaredValueOff(const ConfigKey& key, KeyEffectInfo info, FitRange range);
 
 /// Several keys (the same key of several items) scaled by one common factor of their declared
 /// values, over [1/2, 2]; for keys all declared 0, one common value over the first key's range.
 /// The parameter is "scale" (or the key's name for the zero case).
 Effect DeclaredValuesTogether(const std::vector<ConfigKey>& keys, KeyEffectInfo info);
+/// The same with the scale kept where every key stays inside its range (one per key).
+Effect DeclaredValuesTogether(const std::vector<ConfigKey>& keys, KeyEffectInfo info,
+                              const std::vector<FitRange>& ranges);
 
 }  // namespace ambdrop

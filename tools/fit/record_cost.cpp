@@ -266,6 +266,14 @@ Eigen::VectorXd RecordCost::Residual(const SimulatedRecord& sim) const {
   return r;
 }
 
+Eigen::VectorXd RecordCost::Unreached() const {
+  Eigen::VectorXd r(static_cast<Eigen::Index>(size()));
+  Eigen::Index i = 0;
+  for (const Sample& s : samples_) r(i++) = s.range * s.weight;
+  for (const Block& b : blocks_) r(i++) = b.range * b.weight;
+  return r;
+}
+
 std::vector<double> RecordCost::ChannelSse(const Eigen::VectorXd& residual) const {
   std::vector<double> sse(measurement_.channels.size(), 0.0);
   Eigen::Index i = 0;

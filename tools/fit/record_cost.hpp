@@ -48,6 +48,9 @@ class RecordCost {
   Eigen::VectorXd Residual(const ModelParams& params) const;
   /// The same for a run already made.
   Eigen::VectorXd Residual(const SimulatedRecord& sim) const;
+  /// The residual of a run that never started (a config the readers refused): every sample a
+  /// full range off, as a run that stopped at once scores.
+  Eigen::VectorXd Unreached() const;
   SimulatedRecord Simulate(const ModelParams& params) const;
   /// A residual vector's squared norm split by measurement channel (0 for one not compared):
   /// which channels the overall residual comes from.
