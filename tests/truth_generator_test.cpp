@@ -411,7 +411,7 @@ TEST(TruthGeneratorDeclaredOff, DrawsStayPhysical) {
   EXPECT_GT(clamped, 10);  // the bound did bind, on both TDBs' draws
 }
 
-// A rig whose controller is marginal (kp 1.0; below about 0.7 this rotor's loop is unstable):
+// A rig whose controller is marginal (kp 1.0; at 0.8 and below this rotor's loop is unstable):
 // a draw of kp whose rotor does not hold still before the trigger is drawn again. The
 // rejected draw, left levitating longer, swings out towards its TDBs; the record's does not.
 TEST(TruthGeneratorDeclaredOff, ADrawThatDoesNotLevitateIsDrawnAgain) {
