@@ -6,15 +6,19 @@ on each blind copy, reads the record's truth.json and scores the fit by the issu
 exits 0 whatever the score; non-zero only when a fit or the generator fails or a file is missing.
 
     battery.py AMBDROP AMBDROP_TRUTH RIG.json CONFIG.toml OUT
-               [--jobs N] [--only NAME ...] [--record-file record_si.csv]
-               [--markdown FILE] [--score-only] [--fit-arg ARG ...]
+               [--declared [--count N]] [--jobs N] [--only NAME ...]
+               [--record-file record_si.csv] [--markdown FILE] [--score-only] [--fit-arg ARG ...]
 
     AMBDROP, AMBDROP_TRUTH  the two binaries (build/ambdrop, build/tools/truth/ambdrop_truth)
     RIG.json, CONFIG.toml   the generator's rig and its translation into an ambdrop config
                             (tools/truth/rigs/rigid_rotor_a.json, tests/truth/rigid_rotor_a.toml)
     OUT                     OUT/records (the battery), OUT/fits/<record>/ (fit.json, fit.log)
+    --declared              issue 23's battery instead of the 16 kinds: the two clean records
+                            and --count (default 12) declared_off records, one number of the rig
+                            sheet off in each (`ambdrop_truth --battery-declared`)
     --jobs N                fits run at once (default 1; each fit already uses 2 threads)
-    --only NAME             only the records whose effect kind or record name is NAME (repeat)
+    --only NAME             only the records whose effect kind, record name or declared_off
+                            entry (`tdbs.de.clearance_m`) is NAME (repeat)
     --record-file F         which file of each blind record goes to `--measured` (default
                             record_si.csv: SI with a `t` column; record.csv once the config's
                             [measurement] takes units and a time column)
@@ -63,13 +67,28 @@ from pathlib import Path
 #   - A key group is a key's table (the path without its last segment, normalised). Switch
 #     keys (SWITCH_LEAVES: `enabled`, `current_law`, `model`, ...) do not make a touch by
 #     themselves; a touch is a shared non-switch key.
-#   - A chosen effect's keys are its `set` lines in fit.json. An `equivalent` entry is a name
-#     only; its keys come from EFFECT_NAME_KEYS (the fit's effect library,
-#     tools/fit/effect_library.cpp): family, then ":item" for one TDB / AMB / sensor, no item
-#     for every one of them.
-#   - Values: a key's declared value is what `ambdrop keys CONFIG --json` reads, unless the
-#     truth switches its table on (`<table>.enabled=true`) and the config (TOML, `base =` chain)
-#     has it off: then the declared value is "none" and the change is the whole truth value.
+#   - A chosen effect's keys are its `set` lines in fit.json. An `equivalent` entry carries its
+#     own `set` lines too (fit.json schema 2); in an older fit.json it is a name only, and its
+#     keys come from EFFECT_NAME_KEYS (the fit's effect library, tools/fit/effect_library.cpp):
+#     family, then ":item" for one TDB / AMB / sensor, no item for every one of them.
+#   - Values: a key's declared value is what `ambdrop keys CONFIG --json` reads (a key it does
+#     not list, e.g. `controller.delay_samples`, is read from the TOML and its `base =` chain),
+#     unless the truth switches its table on (`<table>.enabled=true`) and the config has it
+#     off: then the declared value is "none" and the change is the whole truth value.
+#   - An `equivalent` or chosen effect named by a key path (`tdb.de.clearance_m`, or
+#     `tdb.*.clearance_m` for the same key on every item) writes that key (on every item).
+#
+# DECLARED_OFF (issue 23, `--declared`): the truth is one `--set` line, KEY=TRUE, one number of
+# the rig sheet off (truth.json "entry"). A declared_off record is right (HIT) when:
+#   a. name: the first chosen effect's `set` lines set KEY itself (a group effect that sets the
+#      same key on every item counts when its lines include KEY); or else an effect listed in
+#      `equivalent` sets KEY (schema 2: its `set` lines; older fit.json: its name's keys);
+#   b. value: the value that effect's line sets for KEY is within VALUE_TOLERANCE (20 %) of the
+#      true change from the declared value; a number declared 0 (a sensor offset) is held to
+#      its ABSOLUTE_TOLERANCE instead (1 um for an offset); no value (an old fit.json's bare
+#      name) is a miss;
+#   c. cut: as rule 3 above, at least MIN_CUT (whichever effect named KEY).
+#   Clean records of that battery: as above, right only with `no_effect_needed`.
 MIN_CUT = 3.0
 VALUE_TOLERANCE = 0.2  # of the true change from the declared value
 ANGLE_TOLERANCE_RAD = 0.35
@@ -80,12 +99,16 @@ ABSOLUTE_TOLERANCE = {
     "x_m": 1e-6,
     "y_m": 1e-6,
     "offset_m": 1e-6,
+    "offset_x_m": 1e-6,
+    "offset_y_m": 1e-6,
     "clearance_m": 1e-6,
     "drag_torque_N_m": 1e-4,
     "time_constant_s": 1e-4,
     "hold_time_s": 1e-4,
     "coefficient": 0.01,
     "gain": 0.01,
+    "gain_x": 0.01,
+    "gain_y": 0.01,
     "cutoff_Hz": 100.0,
 }
 DEFAULT_ABSOLUTE_TOLERANCE = 1e-9
@@ -163,6 +186,11 @@ def group(key):
 
 def effect_name_keys(name, items):
     """The key paths an effect of the fit's library writes, from its name alone."""
+    if "." in name and ":" not in name:  # named by its key path; "*" for every item
+        parts = name.split(".")
+        if len(parts) >= 3 and parts[1] == "*":
+            return [".".join([parts[0], i] + parts[2:]) for i in items]
+        return [name]
     family, _, item = name.partition(":")
     patterns = EFFECT_NAME_KEYS.get(family, [])
     keys = []
@@ -255,23 +283,97 @@ class Declared:
         return False
 
     def items(self, family):
+        if family == "sensor" or family.startswith("sensor_"):
+            return self.sensors
         if family.startswith("amb"):
             return self.ambs
         if family.startswith("sensor"):
             return self.sensors
         return self.tdbs
 
+    def toml_value(self, key):
+        """A number the TOML chain declares (for keys `ambdrop keys` does not list), or None."""
+        for doc in self.toml:
+            node = doc
+            for part in key.split("."):
+                name, _, index = part.partition("[")
+                node = node.get(name) if isinstance(node, dict) else None
+                if index and isinstance(node, list):
+                    k = int(index.rstrip("]"))
+                    node = node[k] if k < len(node) else None
+            if isinstance(node, (int, float)) and not isinstance(node, bool):
+                return float(node)
+        return None
+
     def value(self, key, truth_keys):
         """The declared value of a truth key, None when the truth switches its table on."""
         table = group(key)
         if truth_keys.get(table + ".enabled") == "true" and not self.switched_on(table):
             return None
-        return self.values.get(key)
+        v = self.values.get(key)
+        return v if v is not None else self.toml_value(key)
 
 
 def equivalent_names(fit):
     """The look-alikes' names: schema 2 lists objects, older fit.json names."""
     return [e["effect"] if isinstance(e, dict) else e for e in fit.get("equivalent", [])]
+
+
+def score_declared_off(row, truth, fit, declared):
+    """Fills `row` for a declared_off truth by the DECLARED_OFF rules above."""
+    row["invented"] = False
+    lines = [split_line(x) for x in truth.get("ambdrop_set", [])]
+    if len(lines) != 1:
+        raise BatteryError(f"{row['record']}: a declared_off truth sets one key, found {lines}")
+    key, true_text = lines[0]
+    true_value = as_number(true_text)
+    notes = []
+    named_by, fitted = None, None
+    if fit["chosen"]:
+        first = dict(split_line(x) for x in fit["chosen"][0]["set"])
+        if key in first:
+            named_by, fitted = fit["chosen"][0]["effect"], first[key]
+    if named_by is None:
+        for e in fit.get("equivalent", []):
+            if isinstance(e, dict):
+                lines_e = dict(split_line(x) for x in e["set"])
+                if key in lines_e:
+                    named_by, fitted = f"equivalent {e['effect']}", lines_e[key]
+                    break
+            elif key in effect_name_keys(e, declared.items(key.split(".")[0])):
+                named_by, fitted = f"equivalent {e} (no value)", None
+                break
+    if named_by is None:
+        if fit["chosen"]:
+            notes.append(f"first chosen does not set {key}, nor does an equivalent")
+        else:
+            notes.append(f"nothing chosen ({fit['verdict']}), no equivalent sets {key}")
+    values_ok = False
+    if named_by is not None:
+        f = as_number(fitted)
+        if f is None or true_value is None:
+            notes.append(f"{named_by}: no value for {key}")
+        else:
+            d = declared.value(key, {})
+            if d == 0.0:  # declared zero: the absolute tolerance, not 20 % of the change
+                tol = absolute_tolerance(key, declared.controller_period_s)
+                values_ok = abs(f - true_value) <= tol
+                text = f"{short(key)} {f:.4g} vs {true_value:.4g} (abs tol {tol:.2g})"
+            else:
+                values_ok, text = compare_value(key, f, true_value, d,
+                                                declared.controller_period_s)
+            row["value"] = text + ("" if values_ok else " !")
+            by_first = bool(fit["chosen"]) and named_by == fit["chosen"][0]["effect"]
+            if not by_first:
+                row["value"] += f" [{named_by}]"
+            if not values_ok:
+                notes.append("value off")
+    cut_ok = row["cut"] >= MIN_CUT
+    if not cut_ok:
+        notes.append(f"cut {row['cut']:.3g}x < {MIN_CUT:g}x")
+    row["hit"] = named_by is not None and values_ok and cut_ok
+    row["note"] = "; ".join(notes)
+    return row
 
 
 def score(record, truth, fit, declared):
@@ -291,6 +393,9 @@ def score(record, truth, fit, declared):
     cut = math.inf if after <= 0.0 else before / after
     row["cut"] = cut
     row["rms"] = f"{fit['rms_before']['overall']:.3g}->{fit['rms_after']['overall']:.3g}"
+    if truth["effect"] == "declared_off":
+        row["truth"] = f"declared_off {truth.get('entry', '?')}"
+        return score_declared_off(row, truth, fit, declared)
     raw = [split_line(s) for s in truth.get("ambdrop_set", [])]
     if not raw:
         if truth["effect"] == "clean":
@@ -412,6 +517,8 @@ def main():
     p.add_argument("rig")
     p.add_argument("config")
     p.add_argument("out")
+    p.add_argument("--declared", action="store_true")
+    p.add_argument("--count", type=int, default=12)
     p.add_argument("--jobs", type=int, default=1)
     p.add_argument("--only", action="append", default=[])
     p.add_argument("--record-file", default="record_si.csv")
@@ -432,18 +539,24 @@ def main():
                 if not os.access(b, os.X_OK):
                     raise BatteryError(f"{b}: not an executable")
             records.mkdir(parents=True, exist_ok=True)
-            gen = subprocess.run([args.ambdrop_truth, "--rig", args.rig, "--battery",
-                                  str(records), "--si"], capture_output=True, text=True)
+            mode = (["--battery-declared", str(records), "--count", str(args.count)]
+                    if args.declared else ["--battery", str(records)])
+            gen = subprocess.run([args.ambdrop_truth, "--rig", args.rig] + mode + ["--si"],
+                                 capture_output=True, text=True)
             if gen.returncode != 0:
-                raise BatteryError(f"ambdrop_truth --battery exited {gen.returncode}: "
+                raise BatteryError(f"ambdrop_truth {mode[0]} exited {gen.returncode}: "
                                    f"{gen.stderr.strip()}")
         index_file = records / "battery.json"
         if not index_file.is_file():
             raise BatteryError(f"{index_file}: missing")
         plan = json.loads(index_file.read_text())
         if args.only:
+            def entry(e):
+                f = records / e["record"] / "truth.json"
+                return json.loads(f.read_text()).get("entry") if f.is_file() else None
             plan = [e for e in plan if e["record"] in args.only or
-                    e["record"].split("_", 1)[1].rsplit("_s", 1)[0] in args.only]
+                    e["record"].split("_", 1)[1].rsplit("_s", 1)[0] in args.only or
+                    entry(e) in args.only]
             if not plan:
                 raise BatteryError(f"--only {args.only}: no such record or effect kind")
         declared = Declared(args.ambdrop, args.config)

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string_view>
 
+#include "declared_off.hpp"
 #include "noise.hpp"
 
 namespace ambdrop_truth {
@@ -102,6 +104,11 @@ const std::vector<std::string>& EffectKinds() {
 }
 
 Truth ApplyEffect(const std::string& kind, std::uint64_t seed, Rig* rig) {
+  constexpr std::string_view kDeclaredOff = "declared_off";
+  if (kind == kDeclaredOff) return ApplyDeclaredOff("", seed, rig);
+  if (kind.starts_with(std::string(kDeclaredOff) + ":")) {
+    return ApplyDeclaredOff(kind.substr(kDeclaredOff.size() + 1), seed, rig);
+  }
   Truth t;
   t.effect = kind;
   t.mapping = "exact";

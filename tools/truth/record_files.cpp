@@ -94,6 +94,7 @@ void WriteTruthJson(const std::filesystem::path& file, const Truth& truth, std::
                     const std::string& rig_file, double generation_s) {
   std::string text = "{\n";
   text += fmt::format("  \"effect\": {},\n", Quoted(truth.effect));
+  if (!truth.entry.empty()) text += fmt::format("  \"entry\": {},\n", Quoted(truth.entry));
   text += fmt::format("  \"description\": {},\n", Quoted(truth.description));
   text += fmt::format("  \"seed\": {},\n", seed);
   text += fmt::format("  \"rig\": {},\n", Quoted(rig_file));

@@ -160,8 +160,8 @@ void CheckRig(const Rig& rig) {
   Positive(rig.acquisition.sample_rate_Hz, "acquisition.sample_rate_Hz");
   Positive(rig.acquisition.record_length_s, "acquisition.record_length_s");
   if (rig.controller.computation_delay_s < 0.0 ||
-      rig.controller.computation_delay_s > 1.0 / rig.controller.rate_Hz + 1e-12) {
-    throw std::runtime_error("controller.computation_delay_s: expected 0 to one period");
+      rig.controller.computation_delay_s > 4.0 / rig.controller.rate_Hz + 1e-12) {
+    throw std::runtime_error("controller.computation_delay_s: expected 0 to four periods");
   }
   if (rig.power_loss.form != FluxDecayForm::kInstant) {
     Positive(rig.power_loss.time_constant_s, "power_loss.time_constant_s");

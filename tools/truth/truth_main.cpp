@@ -3,7 +3,8 @@
 //
 //   ambdrop_truth --rig R.json --effect NAME --seed N --out DIR [--si]
 //   ambdrop_truth --rig R.json --battery DIR [--si]
-//   ambdrop_truth --list
+//   ambdrop_truth --rig R.json --battery-declared DIR [--count N] [--si]
+//   ambdrop_truth [--rig R.json] --list
 #include <fmt/format.h>
 
 #include <chrono>
@@ -14,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "declared_off.hpp"
 #include "drop_run.hpp"
 #include "effects.hpp"
 #include "noise.hpp"
@@ -33,6 +35,8 @@ struct Args {
   std::uint64_t seed = 1;
   std::string out;
   std::string battery;
+  std::string battery_declared;
+  int count = 12;
   bool si = false;
   bool list = false;
   bool noise = true;
@@ -42,7 +46,10 @@ void Usage() {
   std::fputs(
       "usage: ambdrop_truth --rig R.json --effect NAME --seed N --out DIR [--si] [--no-noise]\n"
       "       ambdrop_truth --rig R.json --battery DIR [--si]\n"
-      "       ambdrop_truth --list\n",
+      "       ambdrop_truth --rig R.json --battery-declared DIR [--count N] [--si]\n"
+      "       ambdrop_truth [--rig R.json] --list\n"
+      "NAME: a kind of --list; declared_off (one number of the rig sheet off, drawn by the\n"
+      "seed) or declared_off:ENTRY (that number; --rig R.json --list names the entries)\n",
       stderr);
 }
 
@@ -102,6 +109,18 @@ int main(int argc, char** argv) {
       args.out = value();
     } else if (a[i] == "--battery") {
       args.battery = value();
+    } else if (a[i] == "--battery-declared") {
+      args.battery_declared = value();
+    } else if (a[i] == "--count") {
+      const std::string v = value();
+      try {
+        std::size_t used = 0;
+        args.count = std::stoi(v, &used);
+        if (used != v.size() || args.count < 0) throw std::invalid_argument(v);
+      } catch (const std::exception&) {
+        fmt::print(stderr, "--count: expected a non-negative integer, found '{}'\n", v);
+        return kBadCommandLine;
+      }
     } else if (a[i] == "--si") {
       args.si = true;
     } else if (a[i] == "--no-noise") {
@@ -119,26 +138,54 @@ int main(int argc, char** argv) {
   }
   if (args.list) {
     for (const std::string& k : EffectKinds()) fmt::print("{}\n", k);
+    fmt::print("declared_off\n");
+    if (args.rig.empty()) {
+      fmt::print(stderr, "(with --rig R.json: the rig's declared_off:ENTRY names too)\n");
+      return 0;
+    }
+    try {
+      for (const DeclaredEntry& e : DeclaredOffEntries(ReadRig(args.rig))) {
+        fmt::print("declared_off:{}\n", e.name);
+      }
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "ambdrop_truth: {}\n", e.what());
+      return 1;
+    }
     return 0;
   }
-  if (args.rig.empty() || (args.battery.empty() == (args.effect.empty() || args.out.empty()))) {
+  const int modes = !args.battery.empty() + !args.battery_declared.empty() +
+                    (!args.effect.empty() || !args.out.empty());
+  if (args.rig.empty() || modes != 1 ||
+      (args.battery.empty() && args.battery_declared.empty() &&
+       (args.effect.empty() || args.out.empty()))) {
     Usage();
     return kBadCommandLine;
   }
   try {
-    if (args.battery.empty()) {
+    if (args.battery.empty() && args.battery_declared.empty()) {
       const fs::path dir(args.out);
       MakeRecord(args, args.effect, args.seed, dir, dir / "blind");
       return 0;
     }
-    // The battery: every kind once, the clean record twice; blind copies under names that do
-    // not give the effect away, and battery.json to map them back.
-    const fs::path root(args.battery);
+    // --battery: every kind once, the clean record twice (seeds 1..17). --battery-declared
+    // (issue 23): the clean record twice (seeds 1, 2), then --count declared_off records
+    // (seeds 101, 102, ...). Blind copies under names that do not give the effect away, and
+    // battery.json to map them back.
+    const bool declared = !args.battery_declared.empty();
+    const fs::path root(declared ? args.battery_declared : args.battery);
     std::vector<std::pair<std::string, std::uint64_t>> plan;
-    std::uint64_t seed = 1;
-    for (const std::string& kind : EffectKinds()) {
-      plan.emplace_back(kind, seed++);
-      if (kind == "clean") plan.emplace_back(kind, seed++);
+    if (declared) {
+      plan.emplace_back("clean", 1);
+      plan.emplace_back("clean", 2);
+      for (int i = 0; i < args.count; ++i) {
+        plan.emplace_back("declared_off", 101 + static_cast<std::uint64_t>(i));
+      }
+    } else {
+      std::uint64_t seed = 1;
+      for (const std::string& kind : EffectKinds()) {
+        plan.emplace_back(kind, seed++);
+        if (kind == "clean") plan.emplace_back(kind, seed++);
+      }
     }
     std::string index = "[\n";
     double total_s = 0.0;

@@ -1,0 +1,312 @@
+#include "declared_off.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "drop_run.hpp"
+#include "noise.hpp"
+#include "plant.hpp"
+
+namespace ambdrop_truth {
+
+namespace {
+
+constexpr int kMaxAttempts = 20;
+// The TDB must catch the rotor before the AMB's poles do: clearance <= 0.8 of the air gap.
+constexpr double kClearanceOverGapMax = 0.8;
+// Levitated: held without power loss for the trigger time and at least kLevitationHorizon_s,
+// the rotor's motion at the sensors about its set point stays small and does not grow (an
+// unstable loop's oscillation grows out of the noise; a slow one would still look levitated
+// at a 0.1 s trigger).
+constexpr double kLevitationHorizon_s = 0.3;
+constexpr double kMaxLevitatedMotion_m = 5e-6;  // rms over the last quarter
+constexpr double kMaxLevitatedGrowth = 2.0;     // rms of the last quarter over the second's
+
+/// The shortest text that reads back as the same double.
+std::string Shortest(double v) {
+  return fmt::format("{}", v);
+}
+
+/// A value rounded to 5 significant digits, so that the generator runs the very number the
+/// truth's --set line gives.
+double Rounded(double v) {
+  return std::stod(fmt::format("{:.5g}", v));
+}
+
+/// Every hardware station of the rig (AMBs, sensors, TDBs), for the station draws' neighbours.
+std::vector<double> Stations(const Rig& rig) {
+  std::vector<double> z;
+  for (const AmbRig& a : rig.ambs) z.push_back(a.position_m);
+  for (const SensorRig& s : rig.sensors) z.push_back(s.position_m);
+  for (const TdbRig& t : rig.tdbs) z.push_back(t.position_m);
+  return z;
+}
+
+/// The distance from z to the nearest other station (a station at z itself is z's own).
+double NearestOtherStation(const Rig& rig, double z) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const double s : Stations(rig)) {
+    const double d = std::abs(s - z);
+    if (d > 0.0) nearest = std::min(nearest, d);
+  }
+  return nearest;
+}
+
+double MaxClearance(const Rig& rig) {
+  return std::max(rig.tdbs[0].clearance_m, rig.tdbs[1].clearance_m);
+}
+
+double MinGap(const Rig& rig) {
+  return std::min(rig.ambs[0].nominal_gap_m, rig.ambs[1].nominal_gap_m);
+}
+
+}  // namespace
+
+std::vector<DeclaredEntry> DeclaredOffEntries(const Rig& rig) {
+  std::vector<DeclaredEntry> out;
+  out.reserve(64);  // `add` returns a reference to the entry it added: no reallocation
+  using K = OffKind;
+  // One entry: its generator name, how it is drawn, its ambdrop key, the rig field.
+  const auto add = [&](std::string name, OffKind kind, std::string key,
+                       std::function<double*(Rig*)> field) -> DeclaredEntry& {
+    DeclaredEntry e;
+    e.name = std::move(name);
+    e.kind = kind;
+    e.ambdrop_key = std::move(key);
+    e.field = std::move(field);
+    e.ambdrop_value = [](const Rig&, double v) { return Shortest(v); };
+    out.push_back(std::move(e));
+    return out.back();
+  };
+
+  const std::string rotor = "rotor.rigid.";
+  add("rotor.mass_kg", K::kFactor, rotor + "mass_kg", [](Rig* r) { return &r->rotor.mass_kg; });
+  add("rotor.transverse_inertia_kg_m2", K::kFactor, rotor + "transverse_inertia_kg_m2",
+      [](Rig* r) { return &r->rotor.transverse_inertia_kg_m2; });
+  add("rotor.polar_inertia_kg_m2", K::kFactor, rotor + "polar_inertia_kg_m2",
+      [](Rig* r) { return &r->rotor.polar_inertia_kg_m2; });
+  add("rotor.centre_of_mass_m", K::kStation, rotor + "centre_of_mass_m",
+      [](Rig* r) { return &r->rotor.centre_of_mass_m; });
+
+  for (int i = 0; i < 2; ++i) {
+    const std::string g = "ambs." + rig.ambs[i].name + ".";
+    const std::string k = "amb." + rig.ambs[i].name + ".";
+    add(g + "electromagnet_constant_N_m2_per_A2", K::kFactor,
+        k + "electromagnet.constant_N_m2_per_A2",
+        [i](Rig* r) { return &r->ambs[i].electromagnet_constant_N_m2_per_A2; });
+    add(g + "bias_current_A", K::kFactor, k + "electromagnet.bias_current_A",
+        [i](Rig* r) { return &r->ambs[i].bias_current_A; });
+    add(g + "nominal_gap_m", K::kFactor, k + "electromagnet.nominal_gap_m",
+        [i](Rig* r) { return &r->ambs[i].nominal_gap_m; });
+    add(g + "position_m", K::kStation, k + "position_m",
+        [i](Rig* r) { return &r->ambs[i].position_m; });
+  }
+
+  for (int i = 0; i < 2; ++i) {
+    const std::string g = "sensors." + rig.sensors[i].name + ".";
+    const std::string k = "sensor." + rig.sensors[i].name + ".";
+    add(g + "position_m", K::kStation, k + "position_m",
+        [i](Rig* r) { return &r->sensors[i].position_m; });
+    add(g + "gain_x", K::kFactor, k + "gain_x", [i](Rig* r) { return &r->sensors[i].gain[0]; });
+    add(g + "gain_y", K::kFactor, k + "gain_y", [i](Rig* r) { return &r->sensors[i].gain[1]; });
+    add(g + "offset_x_m", K::kOffset, k + "offset_x_m",
+        [i](Rig* r) { return &r->sensors[i].offset_m[0]; });
+    add(g + "offset_y_m", K::kOffset, k + "offset_y_m",
+        [i](Rig* r) { return &r->sensors[i].offset_m[1]; });
+  }
+
+  const std::string linear = "controller.linear.";
+  const std::string pid = linear + "sections[0].";
+  add("controller.kp", K::kFactor, pid + "kp", [](Rig* r) { return &r->controller.kp; });
+  add("controller.ki_per_s", K::kFactor, pid + "ki_per_s",
+      [](Rig* r) { return &r->controller.ki_per_s; });
+  add("controller.kd_s", K::kFactor, pid + "kd_s", [](Rig* r) { return &r->controller.kd_s; });
+  add("controller.derivative_filter_s", K::kFactor, pid + "derivative_filter_s",
+      [](Rig* r) { return &r->controller.derivative_filter_s; });
+  add("controller.amplifier_gain_A_per_V", K::kFactor, linear + "amplifier_gain_A_per_V",
+      [](Rig* r) { return &r->controller.amplifier_gain_A_per_V; });
+  add("controller.sensor_gain_V_per_m", K::kFactor, linear + "sensor_gain_V_per_m",
+      [](Rig* r) { return &r->controller.sensor_gain_V_per_m; });
+  // ambdrop delays by whole controller samples; the draw is whole periods, so this is exact.
+  DeclaredEntry& delay =
+      add("controller.computation_delay_s", K::kDelay, "controller.delay_samples",
+          [](Rig* r) { return &r->controller.computation_delay_s; });
+  delay.ambdrop_value = [](const Rig& r, double v) {
+    return fmt::format("{}", std::lround(v * r.controller.rate_Hz));
+  };
+
+  const char* race_radius_note =
+      "ambdrop's inner-race radius follows it (journal radius + clearance: the translation "
+      "declares no inner_race_radius_m); the generator's stays the journal radius, as in the "
+      "clean record";
+  for (int i = 0; i < 2; ++i) {
+    const std::string g = "tdbs." + rig.tdbs[i].name + ".";
+    const std::string k = "tdb." + rig.tdbs[i].name + ".";
+    add(g + "position_m", K::kStation, k + "position_m",
+        [i](Rig* r) { return &r->tdbs[i].position_m; });
+    DeclaredEntry& clearance = add(g + "clearance_m", K::kFactor, k + "clearance_m",
+                                   [i](Rig* r) { return &r->tdbs[i].clearance_m; });
+    clearance.mapping = "approximate";
+    clearance.mapping_note = race_radius_note;
+    DeclaredEntry& journal = add(g + "journal_radius_m", K::kFactor, k + "journal_radius_m",
+                                 [i](Rig* r) { return &r->tdbs[i].journal_radius_m; });
+    journal.mapping = "approximate";
+    journal.mapping_note = race_radius_note;
+    // The sheet gives no inner-race radius: the generator takes the journal radius for it, so
+    // the two move together.
+    if (rig.tdbs[i].inner_race_radius_m == rig.tdbs[i].journal_radius_m) {
+      journal.follow = [i](Rig* r) {
+        r->tdbs[i].inner_race_radius_m = r->tdbs[i].journal_radius_m;
+      };
+    }
+    add(g + "friction.coefficient", K::kFactor, k + "friction.coefficient",
+        [i](Rig* r) { return &r->tdbs[i].friction_coefficient; });
+    add(g + "race.inertia_kg_m2", K::kFactor, k + "spin.inertia_kg_m2",
+        [i](Rig* r) { return &r->tdbs[i].race_inertia_kg_m2; });
+    add(g + "race.viscous_drag_N_m_s", K::kFactor, k + "spin.rotational_damping_N_m_s",
+        [i](Rig* r) { return &r->tdbs[i].race_viscous_drag_N_m_s; });
+    add(g + "contact.stiffness_N_per_m", K::kFactor, k + "contact_law.bearing_stiffness_N_per_m",
+        [i](Rig* r) { return &r->tdbs[i].contact_stiffness; });
+    add(g + "contact.damping_N_s_per_m", K::kFactor, k + "contact_law.bearing_damping_N_s_per_m",
+        [i](Rig* r) { return &r->tdbs[i].contact_damping; });
+  }
+  return out;
+}
+
+DeclaredOffDraw DrawDeclaredOff(const Rig& declared, const std::vector<DeclaredEntry>& entries,
+                                int entry, std::uint64_t seed, int attempt) {
+  // A stream of its own per attempt, apart from the noise's (streams 0..23) and the other
+  // kinds' draws (1000).
+  GaussianNoise u(seed, 2000 + static_cast<std::uint64_t>(attempt));
+  const auto between = [&](double lo, double hi) { return lo + (hi - lo) * u.Uniform(); };
+  DeclaredOffDraw d;
+  if (entry < 0) {
+    d.entry = std::min(entries.size() - 1,
+                       static_cast<std::size_t>(u.Uniform() * static_cast<double>(entries.size())));
+  } else {
+    d.entry = static_cast<std::size_t>(entry);
+  }
+  const DeclaredEntry& e = entries.at(d.entry);
+  Rig copy = declared;
+  d.declared = *e.field(&copy);
+  const double sign = u.Uniform() < 0.5 ? -1.0 : 1.0;
+  const double size = between(0.15, 0.4);
+  switch (e.kind) {
+    case OffKind::kFactor:
+      d.value = d.declared * (1.0 + sign * size);
+      break;
+    case OffKind::kOffset:
+      d.value = d.declared + sign * between(5e-6, 30e-6);
+      break;
+    case OffKind::kStation:
+      // size < 1: strictly inside the nearest neighbour on either side.
+      d.value = d.declared + sign * size * NearestOtherStation(declared, d.declared);
+      break;
+    case OffKind::kDelay:
+      d.value = d.declared + 1.0 / declared.controller.rate_Hz;
+      break;
+  }
+  if (e.kind != OffKind::kDelay) d.value = Rounded(d.value);
+  // What stays physical: a TDB clearance inside the AMBs' air gap, and the air gap outside it.
+  if (e.name.ends_with(".clearance_m")) {
+    d.value = std::min(d.value, kClearanceOverGapMax * MinGap(declared));
+  } else if (e.name.ends_with(".nominal_gap_m")) {
+    d.value = std::max(d.value, MaxClearance(declared) / kClearanceOverGapMax);
+  }
+  return d;
+}
+
+bool Levitates(const Rig& rig, std::uint64_t seed) {
+  Rig r = rig;
+  const double horizon = std::max(rig.acquisition.trigger_time_s, kLevitationHorizon_s);
+  r.acquisition.trigger_time_s = 2.0 * horizon;  // no power loss
+  r.acquisition.record_length_s = horizon;
+  const Plant plant(r);
+  std::array<std::array<double, 2>, 2> held{};
+  const PlantState start = EquilibriumState(r, &held);
+  std::array<std::array<double, 2>, 2> set_point{};
+  for (int s = 0; s < 2; ++s) set_point[s] = plant.AtStation(start, r.sensors[s].position_m);
+  bool clear = true;
+  // The rotor's motion about its set point at the sensors, mean square, in the second and the
+  // last quarter of the horizon.
+  std::array<double, 2> sum_sq{};
+  std::array<long, 2> count{};
+  RunOptions options;
+  options.on_step = [&](double t, const PlantState& y) {
+    for (const TdbRig& tdb : r.tdbs) {
+      const auto p = plant.AtStation(y, tdb.position_m);
+      if (std::hypot(p[0], p[1]) > 0.5 * tdb.clearance_m) clear = false;
+    }
+    const int w = t >= 0.75 * horizon ? 1 : (t >= 0.25 * horizon && t < 0.5 * horizon ? 0 : -1);
+    if (w < 0) return;
+    for (int s = 0; s < 2; ++s) {
+      const auto p = plant.AtStation(y, r.sensors[s].position_m);
+      for (int axis = 0; axis < 2; ++axis) {
+        const double u = p[axis] - set_point[s][axis];
+        sum_sq[w] += u * u;
+        ++count[w];
+      }
+    }
+  };
+  const RunResult run = RunDrop(r, seed, options);
+  if (!run.finite || !clear || count[0] == 0 || count[1] == 0) return false;
+  const double second = std::sqrt(sum_sq[0] / static_cast<double>(count[0]));
+  const double last = std::sqrt(sum_sq[1] / static_cast<double>(count[1]));
+  return last < kMaxLevitatedMotion_m && last <= kMaxLevitatedGrowth * second;
+}
+
+Truth ApplyDraw(const std::vector<DeclaredEntry>& entries, const DeclaredOffDraw& d, int attempt,
+                Rig* rig) {
+  const DeclaredEntry& e = entries.at(d.entry);
+  *e.field(rig) = d.value;
+  if (e.follow) e.follow(rig);
+  Truth t;
+  t.effect = "declared_off";
+  t.entry = e.name;
+  const std::string change =
+      d.declared != 0.0
+          ? fmt::format(", {:+.1f} %", 100.0 * (d.value - d.declared) / std::abs(d.declared))
+          : "";
+  const std::string redrawn =
+      attempt > 0 ? fmt::format("; draw {} (the earlier ones did not levitate)", attempt + 1) : "";
+  t.description = fmt::format("declared number off: {} is {} (declared {}{}){}", e.name,
+                              Shortest(d.value), Shortest(d.declared), change, redrawn);
+  t.mapping = e.mapping;
+  t.mapping_note = e.mapping_note;
+  t.generator_parameters.emplace_back(e.name, d.value);
+  t.ambdrop_keys.emplace_back(e.ambdrop_key, e.ambdrop_value(*rig, d.value));
+  return t;
+}
+
+Truth ApplyDeclaredOff(const std::string& entry_name, std::uint64_t seed, Rig* rig) {
+  const std::vector<DeclaredEntry> entries = DeclaredOffEntries(*rig);
+  int entry = -1;
+  if (!entry_name.empty()) {
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      if (entries[i].name == entry_name) entry = static_cast<int>(i);
+    }
+    if (entry < 0) {
+      throw std::invalid_argument("unknown declared_off entry '" + entry_name +
+                                  "' (ambdrop_truth --list names them)");
+    }
+  }
+  for (int attempt = 0; attempt < kMaxAttempts; ++attempt) {
+    Rig actual = *rig;
+    const Truth t =
+        ApplyDraw(entries, DrawDeclaredOff(*rig, entries, entry, seed, attempt), attempt, &actual);
+    CheckRig(actual);
+    if (!Levitates(actual, seed)) continue;
+    *rig = actual;
+    return t;
+  }
+  throw std::runtime_error(
+      fmt::format("declared_off (seed {}): no draw in {} levitates", seed, kMaxAttempts));
+}
+
+}  // namespace ambdrop_truth
