@@ -331,7 +331,7 @@ TEST(RecordAsItComes, TaredSupportForcesCarryTheWeightAtRest) {
   EXPECT_NEAR(-model_sum, weight, 0.01 * weight);
 }
 
-TEST(RecordAsItComes, HeldCurrentAtATriggerBetweenSamplesIsTheLastLevitatedSample) {
+TEST(RecordAsItComes, HeldCurrentAtATriggerBetweenSamplesIsWhereTheDecayStarts) {
   // A current held at 4 A (+ a 1X wobble), then fading as exp(-t/tau) from a trigger a third
   // of the way between two samples.
   MeasuredRecord r;
@@ -348,7 +348,9 @@ TEST(RecordAsItComes, HeldCurrentAtATriggerBetweenSamplesIsTheLastLevitatedSampl
     r.values[0].push_back(t <= trigger ? levitated : held * std::exp(-(t - trigger) / kTau_s));
   }
   const double got = HeldCurrentAtTrigger(r, 0, trigger);
-  EXPECT_EQ(got, held);
+  // The line back from the decay's first two samples misses the exponential's curvature only:
+  // (dt / tau)^2 of the held value, 1e-4.
+  EXPECT_NEAR(got, held, 1e-4 * held);
   // Interpolating at the trigger would have taken a part of the decay (two thirds of a
   // sample's): the test's contrast.
   const std::size_t k = static_cast<std::size_t>(trigger / dt);
@@ -356,6 +358,32 @@ TEST(RecordAsItComes, HeldCurrentAtATriggerBetweenSamplesIsTheLastLevitatedSampl
   const double interpolated = (1 - w) * r.values[0][k] + w * r.values[0][k + 1];
   // (w (1 - exp(-(1 - w) dt / tau)) low: 0.22 % here.)
   EXPECT_LT(interpolated, held * (1.0 - 1e-3));
+}
+
+// A controller at half the logger's rate whose update lands at the cut (its command for the next
+// period is applied at the trigger's own instant), as on the independent rig of tools/truth: the
+// last levitated sample shows the previous period's output, 20 % off the current that decays.
+TEST(RecordAsItComes, HeldCurrentIsTheOneThatDecaysNotThePreviousControllerPeriods) {
+  MeasuredRecord r;
+  r.columns = {"i"};
+  r.values.resize(1);
+  const double dt = 50e-6, trigger = 0.01;
+  const int trigger_row = 200;
+  // Controller outputs per 100 us period, jittering by +-60 mA about 0.3 A.
+  const auto output = [](int period) { return 0.3 + 0.06 * ((period * 7919) % 5 - 2) / 2.0; };
+  double held = 0.0;
+  for (int k = 0; k < 400; ++k) {
+    const double t = k * dt;
+    r.time_s.push_back(t);
+    if (k < trigger_row) {
+      r.values[0].push_back(output(k / 2));
+    } else {
+      if (k == trigger_row) held = output(k / 2);  // the update at the cut is what then decays
+      r.values[0].push_back(held * std::exp(-(t - trigger) / kTau_s));
+    }
+  }
+  ASSERT_NE(r.values[0][trigger_row - 1], held) << "the contrast needs a jitter at the cut";
+  EXPECT_NEAR(HeldCurrentAtTrigger(r, 0, trigger), held, 1e-4 * held);
 }
 
 TEST(RecordAsItComes, OpenLoopHoldsTheLevitatedCurrentAtATriggerBetweenSamples) {

@@ -342,8 +342,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   fit_command
       ->add_option("--tolerance", fit.tolerance,
-                   "Overall relative RMS residual within which model and record agree")
-      ->check(kFinite & CLI::PositiveNumber)
+                   "A relative RMS residual within which model and record agree anyway, added "
+                   "in quadrature to the limit the record's noise and the model's sensitivity "
+                   "set (0: the record alone decides)")
+      ->check(kFinite & CLI::NonNegativeNumber)
       ->capture_default_str();
   fit_command->add_flag("--quiet,-q", fit.quiet, "No summary on stdout");
 

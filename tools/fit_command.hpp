@@ -12,7 +12,7 @@ struct FitOptions {
   double lead_s = 2e-3;  ///< simulated time before the trigger
   int threads = 2;
   int max_runs_per_start = 40;
-  double tolerance = 2e-3;  ///< relative RMS within which model and record agree
+  double tolerance = 0.0;  ///< relative RMS within which model and record agree anyway
   bool quiet = false;
   /// Instead of a record: measured TDB spin-up times ("de=0.11,nde=0.129", s after the
   /// trigger); which single parameter change explains them (tools/fit/spinup_fit.hpp).

@@ -41,12 +41,18 @@ screened = [c for c in f["candidates"] if c["screened"]]
 assert len(screened) > 20 and sum(c["tried"] for c in screened) <= 6, len(screened)
 assert all("screened_rms" in c for c in screened if c["decidable"]), screened
 assert f["decidable_candidates"] == sum(c["decidable"] for c in f["candidates"]), f["decidable_candidates"]
-# Every effect but the races' viscous damping (too weak over its span in 0.25 s) is decidable.
+# An offset TDB shows in the drop's start, which the verdict then judges (the whole record
+# agrees within its limit too); the races' spin laws (drag, inertia, damping) do not show there,
+# before the races have been spun up, and every other hand-made effect does.
+assert f["judged_on"] == "early", f["judged_on"]
+assert f["early"]["rms_after"] <= f["early"]["agreement_limit"], f["early"]
+assert f["whole"]["rms_after"] <= f["whole"]["agreement_limit"], f["whole"]
 assert all(u["why"] for u in f["undecidable"]), f["undecidable"]
 hand_made = [u["effect"] for u in f["undecidable"] if "." not in u["effect"]]
-assert all(e.startswith("tdb_race_damping") for e in hand_made), hand_made
+assert all(e.startswith(("tdb_race_", "tdb_drag_torque")) for e in hand_made), hand_made
 assert f["agreement_limit"] <= f["agreement_limit_after"], (f["agreement_limit"], f["agreement_limit_after"])
-assert after["overall"] <= f["agreement_limit_after"] <= max(f["agreement_limit"], before["overall"] / 3)
+judged = f[f["judged_on"]]  # the top-level limits are the judged part's
+assert judged["rms_after"] <= f["agreement_limit_after"] <= max(f["agreement_limit"], judged["rms_before"] / 3)
 print(f"fit: {f['verdict']}, x {p['x_m']['value']:.3g} m, y {p['y_m']['value']:.3g} m, "
       f"overall {before['overall']:.3g} -> {after['overall']:.3g}")
 PY

@@ -33,10 +33,11 @@ struct SelectionRules {
   /// limits, and whose widened limit the cap cuts, is at most partly_explained: inside the cap
   /// or not, its residual is then chance.
   double confirmable_chaos = 2.0;
-  /// An overall relative RMS (RecordCost) within which model and record agree anyway: noise,
-  /// quantisation and a finer step in the record leave about 3e-4 with the true model
-  /// (clean records of the PID rig at 5 and 2.5 us steps); six times that.
-  double tolerance = 2e-3;
+  /// An overall relative RMS (RecordCost) within which model and record agree anyway, added in
+  /// quadrature. 0 by default (issue 23): the limit derives from the record itself, its noise
+  /// floor and the model's sensitivity to what the record cannot resolve (step, start). At 2e-3
+  /// it was twice the noise floor of a typical record and hid a departure of a few um.
+  double tolerance = 0.0;
   /// Pairs: the best with each other fitted effect; for this many next best, searched from the
   /// partner's own starts too, not only from where each fitted alone.
   int pair_partners = 4;
@@ -101,6 +102,26 @@ struct Selection {
   /// the larger of this and model_floor, within SelectionRules::explained_cut's cap.
   double model_floor_after = 0.0;
   double limit = 0.0;  ///< the agreement limit of the declared model (AgreementLimit)
+  /// The same judgement on the drop's deterministic start alone (CostScope::kEarly: every
+  /// channel sample by sample up to just after the first impact). After the first impacts a
+  /// drop can be chaotic: the whole cost then carries a spread that hides a departure of the
+  /// start (an offset sensor, a side pull, a fading force) which the start shows plainly.
+  struct Part {
+    bool compared = false;  ///< false: the record has nothing after its early part
+    double rms_before = 0.0;
+    double noise_floor = 0.0;
+    double step_sensitivity = 0.0;
+    double start_sensitivity = 0.0;
+    double limit = 0.0;
+    double rms_after = 0.0;
+  };
+  Part early;
+  /// The whole cost's numbers (the top-level ones are the judged part's).
+  Part whole;
+  /// Which part the verdict judges, and whose numbers the top-level fields hold: "early" where
+  /// the drop's start departs from the declared model beyond its limit, else "whole".
+  /// `explained` needs the other part within its limit too.
+  std::string judged_on = "whole";
   /// The limit the verdict on the chosen effects used: the one widened by model_floor_after,
   /// capped by SelectionRules::explained_cut (= limit with nothing chosen).
   double limit_after = 0.0;

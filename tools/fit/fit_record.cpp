@@ -39,7 +39,7 @@ std::unique_ptr<FitResult> FitRecord(const ConfigVariants& config, const Measure
   fit->after = cost.Simulate(fit->fitted);
   fit->residual_before = ComputeResiduals(declared, m, record, fit->before, cost.compare_from_s());
   fit->residual_after = ComputeResiduals(declared, m, record, fit->after, cost.compare_from_s());
-  fit->residual_before.overall = fit->selection.rms_before;
+  fit->residual_before.overall = fit->selection.whole.rms_before;
   const auto share = [&](const SimulatedRecord& sim, ResidualReport* report) {
     const std::vector<double> sse = cost.ChannelSse(cost.Residual(sim));
     double total = 0.0;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "io/json_writer.hpp"
 #include "tools/fit/fit_plots.hpp"
@@ -99,9 +100,9 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   json.Key("end_s").Number(o.before.windows.end_s);
   json.EndObject();
   json.Key("rms_before");
-  Residuals(json, o.before, s.noise_floor);
+  Residuals(json, o.before, s.whole.noise_floor);
   json.Key("rms_after");
-  Residuals(json, o.after, s.noise_floor);
+  Residuals(json, o.after, s.whole.noise_floor);
 
   json.Key("signatures").BeginArray();
   for (const Signature& sig : o.before.signatures) {
@@ -152,6 +153,19 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   }
   json.EndArray();
 
+  // Both parts the verdict looks at; the top-level numbers are the judged one's.
+  json.Key("judged_on").String(s.judged_on);
+  for (const auto& [name, part] : {std::pair{"whole", &s.whole}, std::pair{"early", &s.early}}) {
+    if (!part->compared) continue;
+    json.Key(name).BeginObject();
+    json.Key("rms_before").Number(part->rms_before);
+    json.Key("rms_after").Number(part->rms_after);
+    json.Key("noise_floor").Number(part->noise_floor);
+    json.Key("step_sensitivity").Number(part->step_sensitivity);
+    json.Key("start_sensitivity").Number(part->start_sensitivity);
+    json.Key("agreement_limit").Number(part->limit);
+    json.EndObject();
+  }
   json.Key("decidable_candidates").Integer(s.decidable_candidates);
   json.Key("candidates").BeginArray();
   for (const CandidateScore& c : s.candidates) {
@@ -223,10 +237,23 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
   md += fmt::format("# Fit of {} to {}\n\n", o.config_path, o.measured_path);
   md += fmt::format("**Verdict: {}.** {}.\n\n", s.verdict, s.reason);
   md += fmt::format(
-      "Overall relative RMS residual: {:.4g} before, {:.4g} after; the record's noise alone "
-      "would leave {:.3g}, so the model error is {:.3g} before and {:.3g} after.\n\n",
+      "Judged on {}: relative RMS residual {:.4g} before, {:.4g} after; the record's noise "
+      "alone would leave {:.3g}, so the model error is {:.3g} before and {:.3g} after.\n\n",
+      s.judged_on == "early" ? "the drop's start (every channel up to just after the first "
+                               "impact), where it departs beyond its limit"
+                             : "the whole record",
       s.rms_before, s.rms_after, s.noise_floor, AboveNoise(s.rms_before, s.noise_floor),
       AboveNoise(s.rms_after, s.noise_floor));
+  for (const auto& [name, part] :
+       {std::pair{"The whole record", &s.whole}, std::pair{"The drop's start", &s.early}}) {
+    if (!part->compared) continue;
+    md += fmt::format(
+        "- {}: {:.4g} before, {:.4g} after, agreement limit {:.3g} (noise {:.3g}, step "
+        "sensitivity {:.3g}, start sensitivity {:.3g}).\n",
+        name, part->rms_before, part->rms_after, part->limit, part->noise_floor,
+        part->step_sensitivity, part->start_sensitivity);
+  }
+  md += "\n";
   if (!o.chosen.empty()) {
     md += "## Chosen effects\n\n";
     for (std::size_t e = 0; e < o.chosen.size(); ++e) {

@@ -1,20 +1,27 @@
 #pragma once
-// The current an AMB axis held when its power failed, read from the record. A record's sample
-// after the trigger is already inside the decay, so interpolating at a trigger that falls between
-// two samples takes part of the decay for the held current (0.5 % low at 20 kHz and tau = 5 ms
-// with the trigger mid-interval). The held current is taken from the levitated samples alone.
+// The current an AMB axis held when its power failed, read from the record. Two things make the
+// obvious readings wrong:
+//  - interpolating at a trigger that falls between two samples takes part of the decay for the
+//    held current (0.5 % low at 20 kHz and tau = 5 ms with the trigger mid-interval);
+//  - the last sample before the trigger may belong to the controller's previous period: a
+//    digital controller holds its output between updates, its output jitters from period to
+//    period as it answers its sensors' noise (57 mA on the PID rig, 60 mA on the independent
+//    rig of tools/truth, about 20 % of that rig's levitated current), and an update may land at
+//    the cut itself. There the last levitated sample was 0.223 A and the current that then
+//    decayed 0.320 A.
+// The samples at and just after the trigger say what was held: the decay starts from it.
 #include "io/measured_csv.hpp"
 
 namespace ambdrop {
 
-/// The value of column `column` held at `trigger_s`: its last sample before the trigger (the
-/// first sample for a trigger at or before it). A sample at the trigger's own time is left out:
-/// a logger that reads after the cut already sees the decay there. Not a mean or a line over
-/// several samples: a digital controller holds its output between its samples, so on a record
-/// logged at the controller's rate the last sample before the cut is the held current, and the
-/// sample-to- sample jitter around it is the controller answering its sensors' noise, a current
-/// that really flows (about 57 mA on the PID rig, ten times its record's 5 mA current noise), which
-/// a mean would smear away.
-double HeldCurrentAtTrigger(const MeasuredRecord& record, int column, double trigger_s);
+/// The value of column `column` held at `trigger_s`: where its first two samples at or after
+/// the trigger extrapolate back to (a straight line; over one sample interval of a decay of
+/// tau, off by about (interval / tau)^2 / 2 of the held value). Without two samples after the
+/// trigger, or unless `decay_seen` (the column is a coil current whose samples after the
+/// trigger may be read: not a command, which goes on answering the falling rotor, nor a channel
+/// windowed to the levitated part), its last sample before (the first sample for a trigger at
+/// or before it).
+double HeldCurrentAtTrigger(const MeasuredRecord& record, int column, double trigger_s,
+                            bool decay_seen = true);
 
 }  // namespace ambdrop

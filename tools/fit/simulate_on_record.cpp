@@ -166,19 +166,30 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
   // its coil follows the controller's command, so a command channel stands in for an axis
   // without a coil-current channel.
   std::array<std::array<int, 2>, kMaxAmbs> current_column;
+  std::array<std::array<const MeasurementChannel*, 2>, kMaxAmbs> current_channel{};
   for (auto& a : current_column) a = {-1, -1};
   for (const MeasuredQuantity q :
        {MeasuredQuantity::kControllerCommand, MeasuredQuantity::kCurrent}) {
     for (const MeasurementChannel& ch : m.channels) {
-      if (ch.quantity == q) current_column[ch.index][ch.axis] = r.Column(ch.column);
+      if (ch.quantity != q) continue;
+      current_column[ch.index][ch.axis] = r.Column(ch.column);
+      current_channel[ch.index][ch.axis] = &ch;
     }
   }
-  // What each measured axis held when the power failed: from the levitated samples alone.
+  // What each measured axis held when the power failed. The coil current's samples just after
+  // the trigger say it (the decay starts from it), if its window keeps them; a command goes on
+  // answering the falling rotor after the cut, so from a command the last levitated sample.
   std::array<std::array<double, 2>, kMaxAmbs> held_A{};
   for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
     for (int axis = 0; axis < 2; ++axis) {
       const int c = current_column[a][axis];
-      if (c >= 0) held_A[a][axis] = HeldCurrentAtTrigger(r, c, out.trigger_time_s);
+      if (c < 0) continue;
+      const MeasurementChannel& ch = *current_channel[a][axis];
+      const bool decay_seen =
+          ch.quantity == MeasuredQuantity::kCurrent &&
+          ch.InWindow(out.trigger_time_s, out.trigger_time_s) &&
+          ch.InWindow(out.trigger_time_s + 2.0 * r.SampleInterval(), out.trigger_time_s);
+      held_A[a][axis] = HeldCurrentAtTrigger(r, c, out.trigger_time_s, decay_seen);
     }
   }
   const ControlInput static_load = StaticLoadInput(model);

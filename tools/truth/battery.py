@@ -55,8 +55,11 @@ from pathlib import Path
 #     2. value: every numeric key that the truth and a chosen effect both set is within 20 % of
 #        the true change from the declared value (VALUE_TOLERANCE); angles within 0.35 rad;
 #        zero-valued changes within ABSOLUTE_TOLERANCE;
-#     3. cut: the overall residual above the noise floor falls at least 3x
-#        (rms_before.overall_above_noise / rms_after.overall_above_noise >= MIN_CUT).
+#     3. cut: the residual above the noise floor of the part the verdict judges falls at least
+#        3x (>= MIN_CUT): fit.json's `judged_on` names it, the whole record or the drop's start
+#        (where the start departs; after the first impacts this rig's drop is chaotic, and its
+#        clean records leave 0.05 over the whole record, ten times the noise); older fit.json
+#        files without it: rms_before.overall_above_noise / rms_after.overall_above_noise.
 #
 # MAPPING RULE (truth keys <-> fit effects), the one place it is written down:
 #   - A key is its `--set` path. Keys are compared after `normalise_key`: an unbalance table's
@@ -388,8 +391,14 @@ def score(record, truth, fit, declared):
         "value": "",
         "note": "",
     }
-    before = fit["rms_before"]["overall_above_noise"]
-    after = fit["rms_after"]["overall_above_noise"]
+    part = fit.get(fit.get("judged_on", ""))
+    if part:
+        noise = part["noise_floor"]
+        before = math.sqrt(max(0.0, part["rms_before"] ** 2 - noise ** 2))
+        after = math.sqrt(max(0.0, part["rms_after"] ** 2 - noise ** 2))
+    else:
+        before = fit["rms_before"]["overall_above_noise"]
+        after = fit["rms_after"]["overall_above_noise"]
     cut = math.inf if after <= 0.0 else before / after
     row["cut"] = cut
     row["rms"] = f"{fit['rms_before']['overall']:.3g}->{fit['rms_after']['overall']:.3g}"

@@ -203,10 +203,9 @@ Truth ApplyEffect(const std::string& kind, std::uint64_t seed, Rig* rig) {
                                 axis_name, sensor.gain[axis]);
     t.generator_parameters.emplace_back("sensors." + sensor.name + ".gain_" + axis_name,
                                         sensor.gain[axis]);
-    t.ambdrop_keys.emplace_back("sensor." + sensor.name + ".gain", Num(sensor.gain[axis]));
-    t.mapping = "approximate";
-    t.mapping_note = fmt::format(
-        "ambdrop's sensor gain is per sensor, both axes; only axis {} is off here", axis_name);
+    t.ambdrop_keys.emplace_back("sensor." + sensor.name + ".gain_" + axis_name,
+                                Num(sensor.gain[axis]));
+    t.mapping = "exact";
   } else if (kind == "sensor_offset") {
     const int s = TdbIndex(*rig, &d);
     const int axis = d.Between(0.0, 1.0) < 0.5 ? 0 : 1;
@@ -217,10 +216,9 @@ Truth ApplyEffect(const std::string& kind, std::uint64_t seed, Rig* rig) {
                                 sensor.offset_m[axis] * 1e6);
     t.generator_parameters.emplace_back("sensors." + sensor.name + ".offset_" + axis_name + "_m",
                                         sensor.offset_m[axis]);
-    t.ambdrop_keys.emplace_back("sensor." + sensor.name + ".offset_m", Num(sensor.offset_m[axis]));
-    t.mapping = "approximate";
-    t.mapping_note = fmt::format(
-        "ambdrop's sensor offset is per sensor, both axes; only axis {} is off here", axis_name);
+    t.ambdrop_keys.emplace_back("sensor." + sensor.name + ".offset_" + axis_name + "_m",
+                                Num(sensor.offset_m[axis]));
+    t.mapping = "exact";
   } else if (kind == "chain_lag") {
     AcquisitionRig& q = rig->acquisition;
     q.lag_time_constant_s = d.Between(40e-6, 120e-6);
