@@ -64,11 +64,14 @@ Screening ScreenCandidate(const ConfigVariants& declared, const RecordCost& cost
     }
   }
   if (valid < 3) return out;
-  // r(u) = sum_j L_j(u) r_j (Lagrange), so |r(u)|^2 = L^T G L with G the runs' Gram matrix.
+  // r(u) = sum_j L_j(u) r_j (Lagrange), so |r(u)|^2 = L^T G L with G the runs' Gram matrix, and
+  // |r(u) - r_0|^2 = L^T G L - 2 L^T g + |r_0|^2 with g_j = r_j . r_0.
   Eigen::Matrix3d gram;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) gram(i, j) = r[i].dot(r[j]);
   }
+  const Eigen::Vector3d to_declared = gram.col(0);
+  double farthest = 0.0;
   for (int g = 0; g < kGrid; ++g) {
     const double at = lo + (hi - lo) * g / (kGrid - 1);
     Eigen::Vector3d basis;
@@ -80,11 +83,16 @@ Screening ScreenCandidate(const ConfigVariants& declared, const RecordCost& cost
       basis(j) = l;
     }
     const double sse = std::max(0.0, basis.dot(gram * basis));
+    farthest =
+        std::max(farthest, basis.dot(gram * basis) - 2.0 * basis.dot(to_declared) + gram(0, 0));
     if (sse < out.predicted_sse) {
       out.predicted_sse = sse;
       out.best_value = std::clamp(axis.From(at), p.lower, p.upper);
     }
   }
+  // The reach anywhere in the range, as the quadratic carries the runs out to its ends: a key a
+  // record shows at its true value, twice as far off as the runs went, is decidable.
+  out.reach = std::max(out.reach, OverallRms(cost, std::max(0.0, farthest)));
   return out;
 }
 

@@ -14,8 +14,9 @@
 namespace ambdrop {
 
 struct Screening {
-  /// Overall relative RMS by which the farther of the two values moves the prediction: the
-  /// candidate's reach, for the decidability test.
+  /// Overall relative RMS by which the prediction moves at most over the range: the larger of
+  /// the two runs' moves and the quadratic's anywhere in the range (the candidate's reach, for
+  /// the decidability test).
   double reach = 0.0;
   /// The squared norm of the residual the quadratic predicts at its best value in the range
   /// (never more than the best of the three runs'); +inf if no value was run.

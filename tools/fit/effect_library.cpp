@@ -301,6 +301,37 @@ Effect FluxDecay(const ModelParams& declared) {
                      tau);
 }
 
+// The other current law a power loss shows (issue 24): the amplifiers hold the currents, and so
+// the force law, for a while (their supply's capacitors), then the coils' L/R takes them. On
+// every AMB together (one supply). Two parameters where the exponential has one, so it must pay
+// for its hold by the selection's rule.
+Effect FluxDecayHold(const ModelParams& declared) {
+  std::vector<std::string> ambs;
+  for (const AmbParams& a : declared.ambs) ambs.push_back(a.name);
+  Effect e;
+  e.name = "amb_flux_decay_hold";
+  e.family = "amb_flux_decay";
+  e.description =
+      "AMB currents held after power loss, then fading as exp(-t/tau) (every AMB; "
+      "current_law = hold_then_exponential)";
+  e.parameters = {{"hold_time_s", 0.0, 1e-2, {5e-4, 2e-3}},
+                  {"time_constant_s", 1e-4, 0.1, {2e-3, 8e-3}}};
+  e.revealed_by = {Q::kDisplacement, Q::kCurrent, Q::kTdbNormalForce, Q::kTdbSupportForce};
+  e.probe = {2e-3, 2e-2};
+  e.overrides = [ambs](const std::vector<double>& v) {
+    std::vector<std::string> out;
+    for (const std::string& a : ambs) {
+      const std::string table = "amb." + a + ".flux_decay.";
+      out.push_back(SetTrue(table + "enabled"));
+      out.push_back(SetText(table + "current_law", "hold_then_exponential"));
+      out.push_back(Set(table + "hold_time_s", std::max(0.0, v[0])));
+      out.push_back(Set(table + "time_constant_s", v[1]));
+    }
+    return out;
+  };
+  return e;
+}
+
 // The force of one AMB alone fading: each AMB has its own coils and amplifier.
 Effect FluxDecayAt(const AmbParams& a) {
   const double tau = a.flux_decay.enabled ? a.flux_decay.time_constant_s : 0.0;
@@ -366,12 +397,15 @@ Effect SensorGainOffset(const SensorParams& s, double clearance) {
   return e;
 }
 
-Effect SensorLag(const SensorParams& s, double sample_s) {
-  const std::string name = s.name;
+// The lag of the given sensors, one delay and one filter for all of them (the declared values
+// of the first): a sensor's own, or the acquisition chain's that every sensor goes through.
+Effect SensorLagOf(const std::vector<const SensorParams*>& sensors, double sample_s,
+                   std::string name, std::string description) {
+  const SensorParams& s = *sensors.front();
   Effect e;
-  e.name = "sensor_lag:" + name;
+  e.name = std::move(name);
   e.family = "sensor_lag";
-  e.description = fmt::format("transport delay and first-order low-pass of sensor {}", name);
+  e.description = std::move(description);
   // The filter as its time constant: 0 is no filter, and the cost is smooth through it.
   // The delay is whole samples of the sensor (controller_if/sensor_emulator.cpp), at most what
   // its ring holds: a rig without a controller samples at every step.
@@ -393,13 +427,23 @@ Effect SensorLag(const SensorParams& s, double sample_s) {
   // At the delay's bound: a lag shows only weakly in a drop.
   e.probe = {std::floor(longest / sample_s) * sample_s, 5e-4};
   // The filter's time constant becomes its cutoff; below 0.1 us it is no filter (0 Hz).
-  const std::string table = "sensor." + name + ".lag.";
-  e.overrides = [table](const std::vector<double>& v) {
-    return std::vector<std::string>{
-        SetTrue(table + "enabled"), Set(table + "delay_s", std::max(0.0, v[0])),
-        Set(table + "cutoff_Hz", v[1] > 1e-7 ? 1.0 / (2 * kPi * v[1]) : 0.0)};
+  std::vector<std::string> tables;
+  for (const SensorParams* p : sensors) tables.push_back("sensor." + p->name + ".lag.");
+  e.overrides = [tables](const std::vector<double>& v) {
+    std::vector<std::string> out;
+    for (const std::string& table : tables) {
+      out.push_back(SetTrue(table + "enabled"));
+      out.push_back(Set(table + "delay_s", std::max(0.0, v[0])));
+      out.push_back(Set(table + "cutoff_Hz", v[1] > 1e-7 ? 1.0 / (2 * kPi * v[1]) : 0.0));
+    }
+    return out;
   };
   return e;
+}
+
+Effect SensorLag(const SensorParams& s, double sample_s) {
+  return SensorLagOf({&s}, sample_s, "sensor_lag:" + s.name,
+                     fmt::format("transport delay and first-order low-pass of sensor {}", s.name));
 }
 
 Effect TdbDrag(const TdbParams& t) {
@@ -596,6 +640,7 @@ std::vector<Effect> EffectLibrary(const ConfigVariants& variants, bool only_fami
   // Declared or not (issue 23: a declared decay at the wrong time constant must be refitted).
   if (!declared.ambs.empty()) {
     effects.push_back(FluxDecay(declared));
+    effects.push_back(FluxDecayHold(declared));
     if (declared.ambs.size() > 1) {
       for (const AmbParams& a : declared.ambs) effects.push_back(FluxDecayAt(a));
     }
@@ -609,6 +654,13 @@ std::vector<Effect> EffectLibrary(const ConfigVariants& variants, bool only_fami
     effects.push_back(SensorRunoutHarmonic(s, clearance, 2));
     effects.push_back(SensorGainOffset(s, clearance));
     effects.push_back(SensorLag(s, sensor_sample_s));
+  }
+  if (declared.sensors.size() > 1) {
+    std::vector<const SensorParams*> all;
+    for (const SensorParams& s : declared.sensors) all.push_back(&s);
+    effects.push_back(SensorLagOf(
+        all, sensor_sample_s, "sensor_lag",
+        "one transport delay and first-order low-pass on every sensor (the acquisition chain)"));
   }
   for (const TdbParams& t : declared.tdbs) {
     if (HasDragTorque(t)) effects.push_back(TdbDrag(t));
