@@ -35,13 +35,14 @@ std::string_view LastSegment(std::string_view path) {
 // A span a quantity of this unit may plausibly be off by when it is declared 0 (an offset, a
 // drag, a phase): wide enough to hold what a real machine shows, narrow enough for a search.
 double ZeroSpan(std::string_view unit) {
-  static constexpr std::array<std::pair<std::string_view, double>, 14> kSpans = {{
+  static constexpr std::array<std::pair<std::string_view, double>, 15> kSpans = {{
       {"m", 1e-4},  // offsets, runout: a tenth of a millimetre
       {"rad", std::numbers::pi},
       {"N m", 0.1},     // drag torques
       {"N m s", 1e-3},  // viscous torques
       {"A", 1.0},       // current offsets
       {"s", 1e-3},      // delays, time constants
+      {"1/s", 10.0},    // integral gains: a corner of a couple of hertz
       {"N", 100.0},
       {"N/m", 1e6},
       {"N s/m", 1e3},
@@ -60,18 +61,7 @@ double ZeroSpan(std::string_view unit) {
 }  // namespace
 
 std::string KeyUnit(std::string_view key) {
-  std::string unit = config_detail::UnitOfKey(key);
-  if (!unit.empty()) return unit;
-  // Units the error messages do not spell out but a fit range needs.
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 3> kMore = {{
-      {"_kg_m", "kg m"},
-      {"_Hz", "Hz"},
-      {"_T", "T"},
-  }};
-  for (const auto& [suffix, u] : kMore) {
-    if (key.ends_with(suffix)) return std::string(u);
-  }
-  return {};
+  return config_detail::UnitOfKey(key);
 }
 
 const char* KeyClassName(KeyClass key_class) noexcept {

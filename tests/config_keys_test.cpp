@@ -2,6 +2,7 @@
 // a `--set` path that reaches exactly that number, a class that keeps solver and measurement keys
 // out of a fit, and a default fit range inside what the readers accept.
 #include <fmt/format.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,10 +10,12 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/config_keys.hpp"
 #include "io/config_loader.hpp"
+#include "io/toml_reader.hpp"
 #include "test_configs.hpp"
 
 namespace ambdrop {
@@ -62,6 +65,113 @@ TEST(ConfigKeys, KeysOfASwitchedOffTableAreNotInForce) {
   const LoadedConfig on = LoadConfig(testing::ConfigPath("jarroux2019_industrial_pid.toml"),
                                      {"amb.de.flux_decay.enabled=true"});
   EXPECT_TRUE(ByPath(on.keys).at("amb.de.flux_decay.time_constant_s").in_force);
+}
+
+// The unit comes from the key's name: a compound X_per_Y is X/Y ("1/Y" when the name carries no
+// numerator unit), and the house's compounds without "per" keep their spelling (rad/s, m/s^2,
+// kg/m^3, N m s). One row per unit suffix the readers use.
+TEST(ConfigKeys, UnitsFollowTheKeysNamesIncludingCompoundsWithPer) {
+  const std::vector<std::pair<std::string, std::string>> kCases = {
+      // X_per_Y
+      {"sensor_gain_V_per_m", "V/m"},
+      {"amplifier_gain_A_per_V", "A/V"},
+      {"ki_per_s", "1/s"},
+      {"beta_per_m", "1/m"},
+      {"lower_hardening_rate_per_m", "1/m"},
+      {"stiffness_N_per_m", "N/m"},
+      {"quadratic_stiffness_N_per_m2", "N/m^2"},
+      {"inner_contact_stiffness_N_per_m1_5", "N/m^1.5"},
+      {"stiffness_N_per_m_n", "N/m^n"},
+      {"stiffness_N_per_m_e", "N/m^e"},
+      {"damping_N_s_per_m", "N s/m"},
+      {"damping_x_N_s_per_m", "N s/m"},
+      {"damping_s_per_m", "s/m"},
+      {"regularisation_s_per_m", "s/m"},
+      {"drag_regularisation_s_per_rad", "s/rad"},
+      {"current_gain_N_per_A", "N/A"},
+      {"slew_rate_A_per_s", "A/s"},
+      {"constant_N_m2_per_A2", "N m^2/A^2"},
+      {"scale_A_per_count", "A/count"},
+      {"scale_m_per_count", "m/count"},
+      {"scale_rad_s_per_count", "(rad/s)/count"},
+      {"counts_per_m", "count/m"},
+      // compounds without "per", and single units
+      {"spin_speed_rad_s", "rad/s"},
+      {"offset_rad_s", "rad/s"},
+      {"stick_speed_m_s", "m/s"},
+      {"acceleration_m_s2", "m/s^2"},
+      {"density_kg_m3", "kg/m^3"},
+      {"inertia_kg_m2", "kg m^2"},
+      {"pole_area_m2", "m^2"},
+      {"eccentricity_kg_m", "kg m"},
+      {"drag_torque_N_m", "N m"},
+      {"rotational_damping_N_m_s", "N m s"},
+      {"windage_N_m_s2", "N m s^2"},
+      {"bitrate_bps", "bit/s"},
+      {"youngs_modulus_Pa", "Pa"},
+      {"cutoff_Hz", "Hz"},
+      {"flux_density_T", "T"},
+      {"bias_current_A", "A"},
+      {"slipping_threshold_N", "N"},
+      {"mass_kg", "kg"},
+      {"phase_rad", "rad"},
+      {"clearance_m", "m"},
+      {"kd_s", "s"},
+      // dimensionless
+      {"gain", ""},
+      {"kp", ""},
+      {"palmgren_f1", ""},
+      {"exponent", ""},
+  };
+  for (const auto& [key, unit] : kCases) {
+    EXPECT_EQ(KeyUnit(key), unit) << key;
+    EXPECT_EQ(config_detail::UnitOfKey(key), unit) << key;
+  }
+}
+
+// Error messages print the same unit, once.
+TEST(ConfigKeys, ErrorsPrintTheCompoundUnitOnce) {
+  // The CAN rig: the PID rig with a [can] table.
+  const std::string pid = testing::ConfigPath("jarroux2019_industrial_pid_can.toml");
+  const auto error_of = [&](const std::string& set) {
+    try {
+      LoadConfig(pid, {set});
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_THAT(error_of("controller.pid.sensor_gain_V_per_m=-1"),
+              ::testing::HasSubstr("(V/m), found -1"));
+  EXPECT_THAT(error_of("controller.pid.amplifier_gain_A_per_V=-1"),
+              ::testing::HasSubstr("(A/V), found -1"));
+  EXPECT_THAT(error_of("controller.pid.ki_per_s=-1"), ::testing::HasSubstr("(1/s), found -1"));
+  // Readers whose own wording named the unit must not print it a second time.
+  const std::vector<std::pair<std::string, std::string>> kOnce = {
+      {"can.bitrate_bps=0", "(bit/s)"},
+      {"can.currents_in.de.x.scale_A_per_count=0", "(A/count)"},
+      {"controller.pid.ki_per_s=-1", "(1/s)"}};
+  for (const auto& [set, unit] : kOnce) {
+    const std::string text = error_of(set);
+    const std::size_t first = text.find(unit);
+    ASSERT_NE(first, std::string::npos) << text;
+    EXPECT_EQ(text.find(unit, first + 1), std::string::npos) << "printed twice: " << text;
+  }
+}
+
+// Every key of every rig whose name is a compound X_per_Y carries a unit with a "/".
+TEST(ConfigKeys, EveryCompoundKeyOfEveryRigHasAQuotientUnit) {
+  std::size_t checked = 0;
+  for (const std::string& rig : testing::RigConfigFiles()) {
+    for (const ConfigKey& k : LoadConfig(testing::ConfigPath(rig)).keys) {
+      const std::string last = k.path.substr(k.path.rfind('.') + 1);
+      if (last.find("_per_") == std::string::npos) continue;
+      EXPECT_NE(k.unit.find('/'), std::string::npos)
+          << rig << ": " << k.path << " [" << k.unit << "]";
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 20u);
 }
 
 TEST(ConfigKeys, EveryRigRecordsItsNumbersWithUnitsAndClasses) {
