@@ -102,6 +102,16 @@ FitRange DefaultFitRange(const ConfigKey& key) {
   const double span = ZeroSpan(key.unit);
   FitRange r;
   const std::string_view last = LastSegment(key.path);
+  if (key.integer) {
+    // A count (samples of delay, balls): whole numbers, half to twice a declared count, or a
+    // couple either side of zero, inside the reader's range.
+    const double half_width = std::max(std::floor(0.5 * std::abs(v)), 1.0);
+    r = v > 0.0 && key.lower >= 0.0 ? FitRange{v - half_width, 2.0 * v}
+                                    : FitRange{v - 2.0 * half_width, v + 2.0 * half_width};
+    r.lower = std::max(r.lower, std::ceil(key.lower));
+    r.upper = std::min(r.upper, std::floor(key.upper));
+    return r;
+  }
   if (key.unit == "m" && (last == "position_m" || last == "centre_of_mass_m")) {
     // A station along the shaft: off by what a drawing or a mounting gets wrong, not by a
     // factor of two (which would move it past its neighbours).

@@ -253,7 +253,7 @@ TableReader::TableReader(const toml::table& table, std::string path, std::string
     : table_(&table), path_(std::move(path)), source_name_(std::move(source_name)), log_(log) {}
 
 void TableReader::Log(std::string_view key, double value, const NumberRule& rule,
-                      const toml::node* node) const {
+                      const toml::node* node, bool integer) const {
   if (log_ == nullptr) return;
   ConfigKey k;
   k.path = KeyPath(key);
@@ -261,6 +261,7 @@ void TableReader::Log(std::string_view key, double value, const NumberRule& rule
   k.key_class = ClassOfKey(k.path);
   k.value = value;
   k.declared = node != nullptr;
+  k.integer = integer;
   k.lower = rule.lower;
   k.upper = rule.upper;
   k.lower_inclusive = rule.lower_inclusive;
@@ -322,26 +323,32 @@ std::optional<double> TableReader::OptionalNumber(std::string_view key,
 }
 
 int TableReader::Integer(std::string_view key, int lower, int upper, int fallback) const {
+  return static_cast<int>(Integer64(key, lower, upper, fallback));
+}
+
+std::int64_t TableReader::Integer64(std::string_view key, std::int64_t lower, std::int64_t upper,
+                                    std::int64_t fallback) const {
+  // Logged like a number (the registry's range is the reader's), marked integer so that an
+  // override is written without a decimal point. A default outside the range is a sentinel
+  // ("none", "derived"), not a value, as in Number.
+  const NumberRule range{.lower = static_cast<double>(lower),
+                         .upper = static_cast<double>(upper),
+                         .what = "an integer"};
   const toml::node* node = Find(key);
-  if (node == nullptr) return fallback;
-  const std::string expected = upper == INT_MAX
+  if (node == nullptr) {
+    if (fallback >= lower && fallback <= upper) {
+      Log(key, static_cast<double>(fallback), range, nullptr, true);
+    }
+    return fallback;
+  }
+  const std::string expected = upper == INT_MAX || upper == INT64_MAX
                                    ? fmt::format("an integer >= {}", lower)
                                    : fmt::format("an integer in [{}, {}]", lower, upper);
   const auto* integer = node->as_integer();
   if (integer == nullptr || integer->get() < lower || integer->get() > upper) {
     Fail(key, expected);
   }
-  return static_cast<int>(integer->get());
-}
-
-std::int64_t TableReader::Integer64(std::string_view key, std::int64_t lower, std::int64_t upper,
-                                    std::int64_t fallback) const {
-  const toml::node* node = Find(key);
-  if (node == nullptr) return fallback;
-  const auto* integer = node->as_integer();
-  if (integer == nullptr || integer->get() < lower || integer->get() > upper) {
-    Fail(key, fmt::format("an integer in [{}, {}]", lower, upper));
-  }
+  Log(key, static_cast<double>(integer->get()), range, node, true);
   return integer->get();
 }
 

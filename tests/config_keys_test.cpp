@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -15,6 +16,7 @@
 
 #include "io/config_keys.hpp"
 #include "io/config_loader.hpp"
+#include "io/config_variants.hpp"
 #include "io/toml_reader.hpp"
 #include "test_configs.hpp"
 
@@ -211,6 +213,84 @@ TEST(ConfigKeys, DefaultFitRangesHoldTheValueInsideTheAcceptedRange) {
   }
 }
 
+// Integer keys are in the registry too, marked integer with the reader's range, so that a fit
+// can offer a controller's computation delay; counts that only decide how finely the model is
+// computed (modes, elements) or observed (noise seeds) are not the machine's.
+TEST(ConfigKeys, IntegerKeysAreListedWithTheirRangeAndClass) {
+  const std::string path = testing::ConfigPath("jarroux2019_industrial_pid.toml");
+  const LoadedConfig loaded = LoadConfig(path);
+  const ConfigKey* delay = FindKey(loaded.keys, "controller.delay_samples");
+  ASSERT_NE(delay, nullptr) << "controller.delay_samples is not in the registry";
+  EXPECT_TRUE(delay->integer);
+  EXPECT_EQ(delay->key_class, KeyClass::kPhysical);
+  EXPECT_FALSE(delay->declared);
+  EXPECT_EQ(delay->value, 0.0);
+  EXPECT_EQ(delay->lower, 0.0);
+  EXPECT_EQ(delay->upper, 16.0);
+  EXPECT_EQ(delay->unit, "");
+  const ConfigKey* modes = FindKey(loaded.keys, "rotor.modes");
+  ASSERT_NE(modes, nullptr);
+  EXPECT_TRUE(modes->integer);
+  EXPECT_EQ(modes->key_class, KeyClass::kSolver);
+  const ConfigKey* seed = FindKey(loaded.keys, "sensor.de.noise.seed");
+  ASSERT_NE(seed, nullptr);
+  EXPECT_TRUE(seed->integer);
+  EXPECT_EQ(seed->key_class, KeyClass::kMeasurement);
+  EXPECT_FALSE(FindKey(loaded.keys, "tdb.de.clearance_m")->integer);
+  // A fit searches whole numbers of samples, inside the reader's range.
+  const FitRange r = DefaultFitRange(*delay);
+  EXPECT_EQ(r.lower, std::floor(r.lower));
+  EXPECT_EQ(r.upper, std::floor(r.upper));
+  EXPECT_TRUE(r.lower <= 0.0 && 0.0 < r.upper && r.upper <= 16.0) << r.lower << ", " << r.upper;
+
+  // An integer override is written without a decimal point, which the integer reader refuses.
+  EXPECT_EQ(OverrideInteger(2), "2");
+  const LoadedConfig two = LoadConfig(path, {"controller.delay_samples=" + OverrideInteger(2)});
+  EXPECT_EQ(two.params.controller.delay_samples, 2);
+  const ConfigKey* set = FindKey(two.keys, "controller.delay_samples");
+  ASSERT_NE(set, nullptr);
+  EXPECT_EQ(set->value, 2.0);
+  EXPECT_TRUE(set->declared);
+  EXPECT_THROW(LoadConfig(path, {"controller.delay_samples=" + OverrideNumber(2.0)}), ConfigError);
+  // OverrideFor picks the form the key takes.
+  EXPECT_EQ(OverrideFor(*delay, 3.0), "controller.delay_samples=3");
+  EXPECT_EQ(OverrideFor(*FindKey(loaded.keys, "tdb.de.clearance_m"), 2.0),
+            "tdb.de.clearance_m=2.0");
+}
+
+// Every integer key of every rig, written back with OverrideInteger, reads the same value; a
+// neighbouring value is read as given, or refused with a message that names the key's table.
+TEST(ConfigKeys, EveryIntegerKeyOfEveryRigRoundTripsThroughSet) {
+  std::size_t checked = 0;
+  for (const std::string& rig : testing::RigConfigFiles()) {
+    SCOPED_TRACE(rig);
+    const std::string path = testing::ConfigPath(rig);
+    for (const ConfigKey& k : LoadConfig(path).keys) {
+      if (!k.integer) continue;
+      const auto value = static_cast<std::int64_t>(k.value);
+      ASSERT_EQ(static_cast<double>(value), k.value) << k.path;
+      const LoadedConfig same = LoadConfig(path, {k.path + "=" + OverrideInteger(value)});
+      const ConfigKey* again = FindKey(same.keys, k.path);
+      ASSERT_NE(again, nullptr) << k.path;
+      EXPECT_EQ(again->value, k.value) << k.path;
+      EXPECT_TRUE(again->declared) << k.path;
+      EXPECT_TRUE(again->integer) << k.path;
+      const std::int64_t other = k.value + 1.0 <= k.upper ? value + 1 : value - 1;
+      try {
+        const LoadedConfig moved = LoadConfig(path, {k.path + "=" + OverrideInteger(other)});
+        EXPECT_EQ(FindKey(moved.keys, k.path)->value, static_cast<double>(other)) << k.path;
+      } catch (const ConfigError& e) {
+        // Refused for what it does to its neighbours (a CAN signal overlapping another, a
+        // second deck without its table): the message names the key's table.
+        const std::string table = k.path.substr(0, k.path.rfind('.'));
+        EXPECT_NE(std::string(e.what()).find(table), std::string::npos) << e.what();
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 20u);
+}
+
 // The registry's paths are exactly what --set accepts: setting a declared physical key to a
 // new value inside its fit range moves that key, and only that key, of everything declared.
 TEST(ConfigKeys, EveryDeclaredPhysicalKeyIsReachedByItsSetPath) {
@@ -224,14 +304,18 @@ TEST(ConfigKeys, EveryDeclaredPhysicalKeyIsReachedByItsSetPath) {
       const FitRange r = DefaultFitRange(k);
       double w = 0.5 * (r.lower + r.upper);
       if (w == k.value) w = r.lower + 0.25 * (r.upper - r.lower);
-      const std::string set = fmt::format("{}={:.17g}", k.path, w);
+      // An integer key takes whole numbers (its range's ends are whole).
+      if (k.integer) w = std::round(w) != k.value ? std::round(w) : r.upper;
+      const std::string set = OverrideFor(k, w);
       LoadedConfig moved;
       try {
         moved = LoadConfig(path, {set});
       } catch (const ConfigError& e) {
         // Other keys may bound this one (a bore inside its shaft): that is a refusal with a
-        // reason, not a lost key. It must name the key it was given.
-        EXPECT_NE(std::string(e.what()).find(k.path), std::string::npos) << set << ": " << e.what();
+        // reason, not a lost key. It must name the key it was given; a count may change the
+        // structure instead (a second deck needs its table), and name that table.
+        const std::string named = k.integer ? k.path.substr(0, k.path.rfind('.')) : k.path;
+        EXPECT_NE(std::string(e.what()).find(named), std::string::npos) << set << ": " << e.what();
         continue;
       }
       const auto after = ByPath(moved.keys);
