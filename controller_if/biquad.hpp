@@ -37,6 +37,13 @@ class Biquad {
     s1_ = s1;
     s2_ = s2;
   }
+  /// The state of the section at rest with constant input x and output y: s1 = y - b0 x,
+  /// s2 = b2 x - a2 y. A rest when y (1 + a1 + a2) = x (b0 + b1 + b2): y = H(1) x, or for an
+  /// integrating section x = 0 and any y (the integral it holds).
+  void HoldAt(double x, double y) noexcept {
+    s1_ = y - c_.b0 * x;
+    s2_ = c_.b2 * x - c_.a2 * y;
+  }
   /// Adds w to every later output of an integrating section (see back-calculation in
   /// discrete_controller.cpp): with 1 + a1 + a2 = 0, s1 += w and s2 -= a2 w keep it there.
   void AddToIntegral(double w) noexcept {

@@ -40,6 +40,33 @@ LinearAxis::LinearAxis(const LinearControllerParams& p, double period_s, double 
   back_calculation_gain_ = period_s / p.back_calculation_time_s;
 }
 
+void LinearAxis::HoldAtRest(double reading_m, double current_A) noexcept {
+  int last = -1;
+  for (int i = count_ - 1; i >= 0 && last < 0; --i) {
+    if (sections_[i].coefficients().Integrates()) last = i;
+  }
+  const auto dc_gain = [this](int i) {
+    const BiquadCoefficients& c = sections_[i].coefficients();
+    return (c.b0 + c.b1 + c.b2) / (1.0 + c.a1 + c.a2);
+  };
+  // What the sections after the integrator make of the integral it holds.
+  double downstream = 1.0;
+  for (int i = last + 1; i < count_; ++i) downstream *= dc_gain(i);
+  const double held_V = (current_A - feedforward_A_) / amplifier_gain_A_per_V_;
+  double x = -sensor_gain_V_per_m_ * reading_m;
+  for (int i = 0; i < count_; ++i) {
+    double y = 0.0;  // an earlier integrator rests empty (its input is zero)
+    if (i == last) {
+      y = held_V / downstream;
+    } else if (!sections_[i].coefficients().Integrates()) {
+      y = dc_gain(i) * x;
+    }
+    sections_[i].HoldAt(x, y);
+    x = y;
+  }
+  unlimited_A_ = current_A;
+}
+
 double LinearAxis::Update(double reading_m) noexcept {
   std::array<double, kMaxControllerSections> held_s1{};
   std::array<double, kMaxControllerSections> held_s2{};

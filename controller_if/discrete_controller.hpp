@@ -18,6 +18,11 @@ class LinearAxis {
              double limit_A);
   /// The limited command current from one reading.
   double Update(double reading_m) noexcept;
+  /// Puts the axis at rest with the reading `reading_m` held and the command `current_A` (the
+  /// levitated start, Model::levitated): the last integrating section holds what the command
+  /// needs beyond the feedforward (at rest an integrating cascade sees no error: `reading_m` is
+  /// then 0) and every other section rests at its DC gain on its constant input.
+  void HoldAtRest(double reading_m, double current_A) noexcept;
   /// The command before the limit, of the last Update (for tests of the anti-windup rules).
   double unlimited_A() const noexcept { return unlimited_A_; }
   const Biquad& section(int i) const noexcept { return sections_[i]; }

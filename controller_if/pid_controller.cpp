@@ -31,6 +31,14 @@ double PidAxis::Update(double reading_m) noexcept {
   return std::clamp(current, -limit_A_, limit_A_);
 }
 
+void PidAxis::HoldAtRest(double reading_m, double current_A) noexcept {
+  const double e = -p_.sensor_gain_V_per_m * reading_m;
+  integral_ = p_.ki_per_s != 0.0
+                  ? (current_A - feedforward_A_) / p_.amplifier_gain_A_per_V - p_.kp * e
+                  : 0.0;
+  derivative_ = 0.0;  // of a constant reading; the first sample primes the error as always
+}
+
 ReferenceController::ReferenceController(const Model& model, double period_s)
     : linear_form_(model.params.controller.form == ControllerForm::kLinear),
       delayed_(model.params.controller.delay_samples > 0),
@@ -40,6 +48,9 @@ ReferenceController::ReferenceController(const Model& model, double period_s)
   const PidParams& pid = controller.pid;
   const bool feedforward =
       linear_form_ ? controller.linear.gravity_feedforward : pid.gravity_feedforward;
+  // A run starts where this controller holds the rotor (Model::levitated): moved there, the
+  // controller starts at rest on the currents that hold it, its integrators full.
+  const LevitatedStart& levitated = model.levitated;
   for (int a = 0; a < ambs_; ++a) {
     const AmbParams& amb = model.params.ambs[a];
     if (amb.law == AmbForceLaw::kEquivalent) {
@@ -59,12 +70,18 @@ ReferenceController::ReferenceController(const Model& model, double period_s)
     for (int axis = 0; axis < 2; ++axis) {
       feedforward_A_[a][axis] =
           feedforward ? CurrentForStaticForce(amb, model.amb_bias_force_N[a][axis]) : 0.0;
-      const double start_A = feedforward_A_[a][axis];
+      const double feedforward_A = feedforward_A_[a][axis];
+      const double start_A = levitated.moved ? levitated.current_A[a][axis] : feedforward_A;
       if (linear_form_) {
-        linear_[a][axis] = LinearAxis(controller.linear, period_s, start_A, limit);
+        linear_[a][axis] = LinearAxis(controller.linear, period_s, feedforward_A, limit);
+        if (levitated.moved) {
+          linear_[a][axis].HoldAtRest(levitated.reading_shift_m[a][axis], start_A);
+        }
       } else {
-        axes_[a][axis] = PidAxis(pid, period_s, start_A, limit);
+        axes_[a][axis] = PidAxis(pid, period_s, feedforward_A, limit);
+        if (levitated.moved) axes_[a][axis].HoldAtRest(levitated.reading_shift_m[a][axis], start_A);
       }
+      start_A_[a][axis] = start_A;
       delay_[a][axis] = CommandDelay(controller.delay_samples, start_A);
       if (amplified_) amplifier_[a][axis] = AmplifierLoop(controller.amplifier, period_s, start_A);
     }
@@ -85,7 +102,7 @@ void ReferenceController::Update(const SensorReadings& readings, ControlInput* i
 }
 
 void ReferenceController::Initial(ControlInput* input) const noexcept {
-  for (int a = 0; a < ambs_; ++a) input->amb[a].current_A = feedforward_A_[a];
+  for (int a = 0; a < ambs_; ++a) input->amb[a].current_A = start_A_[a];
 }
 
 }  // namespace ambdrop

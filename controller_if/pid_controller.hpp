@@ -20,6 +20,10 @@ class PidAxis {
   PidAxis() = default;
   PidAxis(const PidParams& params, double period_s, double feedforward_A, double limit_A);
   double Update(double reading_m) noexcept;
+  /// Puts the axis at rest with the reading `reading_m` held and the command `current_A` (the
+  /// levitated start, Model::levitated): the integral holds what the command needs beyond the
+  /// feedforward and the proportional term; without integral action there is nothing to hold.
+  void HoldAtRest(double reading_m, double current_A) noexcept;
   double integral_V() const noexcept { return integral_; }
 
  private:
@@ -44,7 +48,8 @@ class ReferenceController {
   ReferenceController(const Model& model, double period_s);
   /// New control currents from one sample of the sensors.
   void Update(const SensorReadings& readings, ControlInput* input) noexcept;
-  /// The currents of the first sample: the feedforward alone.
+  /// The currents before the first sample: the feedforward alone, or those that hold the
+  /// levitated start when it moved (Model::levitated; StaticLoadInput gives the same).
   void Initial(ControlInput* input) const noexcept;
 
  private:
@@ -56,6 +61,7 @@ class ReferenceController {
   bool delayed_ = false;
   bool amplified_ = false;
   std::array<std::array<double, 2>, kMaxAmbs> feedforward_A_{};
+  std::array<std::array<double, 2>, kMaxAmbs> start_A_{};
   std::array<int, kMaxAmbs> sensor_index_{};
   int ambs_ = 0;
 };

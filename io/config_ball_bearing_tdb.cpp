@@ -46,7 +46,7 @@ DiscreteBallParams ReadBalls(const TableReader& parent) {
   params.ball_diameter_m = table.Number("ball_diameter_m", Positive());
   params.pitch_diameter_m = table.Number(
       "pitch_diameter_m",
-      AtLeast(params.ball_diameter_m * (1.0 + 1e-12), "a number above ball_diameter_m (m)"));
+      AtLeast(params.ball_diameter_m * (1.0 + 1e-12), "a number above ball_diameter_m"));
   params.contact_angle_rad =
       table.Number("contact_angle_rad", InHalfOpenRange(0.0, std::numbers::pi / 2.0));
   const NumberRule conformity = AtLeast(0.5 + 1e-12, "a groove conformity above 0.5");

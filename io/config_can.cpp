@@ -89,12 +89,13 @@ CanSignalLayout ReadLayout(const TableReader& table, const Defaults& defaults, b
   return layout;
 }
 
+// The scale's unit ("A/count") comes from its key's name, as every number's does.
 CanScaling ReadScaling(const TableReader& table, std::string_view scale_key,
-                       std::string_view offset_key, std::string_view scale_unit) {
-  const std::string expected = fmt::format("a non-zero finite number ({})", scale_unit);
+                       std::string_view offset_key) {
+  const std::string what = "a non-zero finite number";
   CanScaling scaling;
-  scaling.scale = table.Number(scale_key, NumberRule{.what = expected});
-  if (scaling.scale == 0.0) table.Fail(scale_key, expected);
+  scaling.scale = table.Number(scale_key, NumberRule{.what = what});
+  if (scaling.scale == 0.0) table.Fail(scale_key, config_detail::ExpectedWithUnit(what, scale_key));
   scaling.offset = table.Number(offset_key, config_detail::AnyNumber(), 0.0);
   return scaling;
 }
@@ -134,9 +135,8 @@ int ResolveName(const TableReader& table, const std::string& name,
 /// [can.GROUP.NAME.x] / [.y] tables: currents_in (AMBs) or sensors_out (sensors).
 void ReadAxisGroup(const TableReader& can, std::string_view group, CanSignalRole role,
                    std::string_view scale_key, std::string_view offset_key,
-                   std::string_view scale_unit, const std::vector<std::string>* known,
-                   std::vector<std::string>* found, const Defaults& defaults,
-                   std::vector<CanSignalSpec>* signals) {
+                   const std::vector<std::string>* known, std::vector<std::string>* found,
+                   const Defaults& defaults, std::vector<CanSignalSpec>* signals) {
   const std::string_view noun = role == CanSignalRole::kCurrent ? "AMB" : "sensor";
   for (const auto& [name, named] : can.NamedTables(group)) {
     named.AllowOnly({"x", "y"});
@@ -152,7 +152,7 @@ void ReadAxisGroup(const TableReader& can, std::string_view group, CanSignalRole
       table->AllowOnly(With(kLayoutKeys, {scale_key, offset_key}));
       CanSignalSpec signal = StartSignal(*table, defaults, role);
       signal.layout = ReadLayout(*table, defaults, true);
-      signal.scaling = ReadScaling(*table, scale_key, offset_key, scale_unit);
+      signal.scaling = ReadScaling(*table, scale_key, offset_key);
       signal.index = index;
       signal.axis = axis;
       signals->push_back(std::move(signal));
@@ -212,8 +212,7 @@ void ReadStatus(const TableReader& can, const Defaults& defaults,
     CanSignalSpec signal = StartSignal(*table, defaults, role);
     if (role == CanSignalRole::kStatusSpinSpeed) {
       table->AllowOnly(With(kLayoutKeys, {"scale_rad_s_per_count", "offset_rad_s"}));
-      signal.scaling =
-          ReadScaling(*table, "scale_rad_s_per_count", "offset_rad_s", "rad/s per count");
+      signal.scaling = ReadScaling(*table, "scale_rad_s_per_count", "offset_rad_s");
     } else {
       table->AllowOnly(kLayoutKeys);
     }
@@ -263,18 +262,16 @@ CanConfig ReadCanConfig(const TableReader& can, const CanNames* names) {
   }
   config.bit_rate_switch = can.Bool("bit_rate_switch", config.fd);
   // ISO 11898-1 caps the nominal rate at 1 Mbit/s; FD data phases run up to ~8-12 Mbit/s.
-  config.bitrate_bps = can.Number("bitrate_bps",
-                                  NumberRule{.lower = 0.0,
-                                             .lower_inclusive = false,
-                                             .upper = 1e6,
-                                             .what = "a number in (0, 1e6] (bit/s)"},
-                                  1e6);
-  config.data_bitrate_bps = can.Number("data_bitrate_bps",
-                                       NumberRule{.lower = 0.0,
-                                                  .lower_inclusive = false,
-                                                  .upper = 20e6,
-                                                  .what = "a number in (0, 20e6] (bit/s)"},
-                                       config.bitrate_bps);
+  config.bitrate_bps = can.Number(
+      "bitrate_bps",
+      NumberRule{
+          .lower = 0.0, .lower_inclusive = false, .upper = 1e6, .what = "a number in (0, 1e6]"},
+      1e6);
+  config.data_bitrate_bps = can.Number(
+      "data_bitrate_bps",
+      NumberRule{
+          .lower = 0.0, .lower_inclusive = false, .upper = 20e6, .what = "a number in (0, 20e6]"},
+      config.bitrate_bps);
   config.filter_input_ids = can.Bool("filter_input_ids", true);
 
   Defaults defaults{.fd = config.fd,
@@ -289,11 +286,11 @@ CanConfig ReadCanConfig(const TableReader& can, const CanNames* names) {
     can.Fail("tx_len_bytes", "a CAN FD length: 0..8, 12, 16, 20, 24, 32, 48 or 64");
   }
   ReadAxisGroup(can, "currents_in", CanSignalRole::kCurrent, "scale_A_per_count", "offset_A",
-                "A per count", names != nullptr ? &names->ambs : nullptr, &spec.amb_names, defaults,
+                names != nullptr ? &names->ambs : nullptr, &spec.amb_names, defaults,
                 &spec.signals);
   ReadAxisGroup(can, "sensors_out", CanSignalRole::kSensor, "scale_m_per_count", "offset_m",
-                "m per count", names != nullptr ? &names->sensors : nullptr, &spec.sensor_names,
-                defaults, &spec.signals);
+                names != nullptr ? &names->sensors : nullptr, &spec.sensor_names, defaults,
+                &spec.signals);
   if (names != nullptr) {
     spec.amb_names = names->ambs;
     spec.sensor_names = names->sensors;

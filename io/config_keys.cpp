@@ -35,13 +35,14 @@ std::string_view LastSegment(std::string_view path) {
 // A span a quantity of this unit may plausibly be off by when it is declared 0 (an offset, a
 // drag, a phase): wide enough to hold what a real machine shows, narrow enough for a search.
 double ZeroSpan(std::string_view unit) {
-  static constexpr std::array<std::pair<std::string_view, double>, 14> kSpans = {{
+  static constexpr std::array<std::pair<std::string_view, double>, 15> kSpans = {{
       {"m", 1e-4},  // offsets, runout: a tenth of a millimetre
       {"rad", std::numbers::pi},
       {"N m", 0.1},     // drag torques
       {"N m s", 1e-3},  // viscous torques
       {"A", 1.0},       // current offsets
       {"s", 1e-3},      // delays, time constants
+      {"1/s", 10.0},    // integral gains: a corner of a couple of hertz
       {"N", 100.0},
       {"N/m", 1e6},
       {"N s/m", 1e3},
@@ -60,18 +61,7 @@ double ZeroSpan(std::string_view unit) {
 }  // namespace
 
 std::string KeyUnit(std::string_view key) {
-  std::string unit = config_detail::UnitOfKey(key);
-  if (!unit.empty()) return unit;
-  // Units the error messages do not spell out but a fit range needs.
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 3> kMore = {{
-      {"_kg_m", "kg m"},
-      {"_Hz", "Hz"},
-      {"_T", "T"},
-  }};
-  for (const auto& [suffix, u] : kMore) {
-    if (key.ends_with(suffix)) return std::string(u);
-  }
-  return {};
+  return config_detail::UnitOfKey(key);
 }
 
 const char* KeyClassName(KeyClass key_class) noexcept {
@@ -112,6 +102,16 @@ FitRange DefaultFitRange(const ConfigKey& key) {
   const double span = ZeroSpan(key.unit);
   FitRange r;
   const std::string_view last = LastSegment(key.path);
+  if (key.integer) {
+    // A count (samples of delay, balls): whole numbers, half to twice a declared count, or a
+    // couple either side of zero, inside the reader's range.
+    const double half_width = std::max(std::floor(0.5 * std::abs(v)), 1.0);
+    r = v > 0.0 && key.lower >= 0.0 ? FitRange{v - half_width, 2.0 * v}
+                                    : FitRange{v - 2.0 * half_width, v + 2.0 * half_width};
+    r.lower = std::max(r.lower, std::ceil(key.lower));
+    r.upper = std::min(r.upper, std::floor(key.upper));
+    return r;
+  }
   if (key.unit == "m" && (last == "position_m" || last == "centre_of_mass_m")) {
     // A station along the shaft: off by what a drawing or a mounting gets wrong, not by a
     // factor of two (which would move it past its neighbours).

@@ -27,6 +27,9 @@ struct ConfigKey {
   KeyClass key_class = KeyClass::kPhysical;
   double value = 0.0;    ///< as read, or the default the reader used
   bool declared = true;  ///< false: absent from the config, the reader's default applies
+  /// true: the readers take a whole number only (TableReader::Integer), so an override must be
+  /// written without a decimal point (OverrideInteger); lower and upper are whole numbers.
+  bool integer = false;
   double lower = -std::numeric_limits<double>::infinity();  ///< the readers' accepted range
   double upper = std::numeric_limits<double>::infinity();
   bool lower_inclusive = true;
@@ -46,7 +49,8 @@ KeyClass ClassOfKey(std::string_view path);
 /// A range a fit may search for a key "whose declared value is off": relative to the declared
 /// value (a factor of 2 either way for a size, a span either side for a signed quantity, 10 %
 /// or 1 cm either side for a station along the shaft), or, for a key declared 0, a physical
-/// span by unit class; always inside the readers' range.
+/// span by unit class; always inside the readers' range. An integer key's ends are whole
+/// numbers: from half to twice a positive count, else two either side.
 struct FitRange {
   double lower = 0.0;
   double upper = 0.0;

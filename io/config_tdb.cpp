@@ -248,13 +248,16 @@ TdbParams ReadTdb(const std::string& name, const TableReader& table, const Axial
   tdb.journal_radius_m = table.Number("journal_radius_m", Positive());
   tdb.clearance_m = table.Number("clearance_m", Positive());
   // Rir of the slip and race torque. The race bore surrounds the journal, so it cannot be smaller
-  // than the journal radius. Absent: 0, derived (journal radius + clearance, InnerRaceRadius), so
-  // that it follows a clearance changed later, as it did before the key.
-  tdb.inner_race_radius_m = table.Number(
-      "inner_race_radius_m",
+  // than the journal radius. Absent: 0 in the parameters, derived where it is used (journal radius
+  // + clearance, InnerRaceRadius), so that it follows a clearance changed later, as it did before
+  // the key; the registry lists the value derived now as a default (declared = false), which a
+  // reading with another clearance derives again.
+  const NumberRule race_radius =
       AtLeast(tdb.journal_radius_m,
-              "a radius at least journal_radius_m (the race bore surrounds the journal)"),
-      0.0);
+              "a radius at least journal_radius_m (the race bore surrounds the journal)");
+  tdb.inner_race_radius_m =
+      table.Number("inner_race_radius_m", race_radius, tdb.journal_radius_m + tdb.clearance_m);
+  if (!table.Has("inner_race_radius_m")) tdb.inner_race_radius_m = 0.0;
   // The selected model's table is required; the other, if given, is checked too, so that
   // `--set tdb.X.model=...` can switch between two complete descriptions.
   const std::string model = table.Choice(

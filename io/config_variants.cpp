@@ -59,4 +59,16 @@ std::string OverrideNumber(double value) {
   return text;
 }
 
+std::string OverrideInteger(std::int64_t value) {
+  return fmt::format("{}", value);
+}
+
+std::string OverrideFor(const ConfigKey& key, double value) {
+  if (!std::isfinite(value)) {
+    throw std::invalid_argument(fmt::format("OverrideFor: {} = {} is not finite", key.path, value));
+  }
+  return key.path + "=" +
+         (key.integer ? OverrideInteger(std::llround(value)) : OverrideNumber(value));
+}
+
 }  // namespace ambdrop

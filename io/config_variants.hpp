@@ -3,11 +3,13 @@
 // same path as `--set`: what `ambdrop fit` does with each candidate effect, so that a fitted
 // effect is exactly the `--set` lines the report prints and every value passes the config's
 // own checks. The tree is parsed once; each variant copies it, applies its overrides and reads it.
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "io/config_keys.hpp"
 #include "io/config_loader.hpp"
 
 namespace ambdrop {
@@ -40,5 +42,13 @@ class ConfigVariants {
 /// A number as an override value: the shortest text that reads back to the same double, always
 /// with a decimal point or exponent (TOML reads "1" as an integer). Finite values only.
 std::string OverrideNumber(double value);
+
+/// An integer as an override value, with no decimal point: what TableReader::Integer accepts
+/// (ConfigKey::integer), which refuses "2.0".
+std::string OverrideInteger(std::int64_t value);
+
+/// "path=value" for a registry key: OverrideInteger of the nearest whole number for an integer
+/// key, OverrideNumber otherwise. Finite values only.
+std::string OverrideFor(const ConfigKey& key, double value);
 
 }  // namespace ambdrop

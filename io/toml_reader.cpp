@@ -104,38 +104,101 @@ NumberRule NonNegativeBelow(double upper, std::string what) {
       .lower = 0.0, .upper = upper, .upper_inclusive = false, .what = std::move(what)};
 }
 
-std::string UnitOfKey(std::string_view key) {
-  // Longest suffix first, so "_N_s_per_m" wins over "_s_per_m" and "_m".
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 24> kUnits = {{
-      {"_N_m2_per_A2", "N m^2/A^2"},
-      {"_N_per_m1_5", "N/m^1.5"},
-      {"_s_per_rad", "s/rad"},
+namespace {
+
+// The unit at the end of a name, longest suffix first, so that "_N_m_s" wins over "_m_s" and
+// "_s". The house's compounds without "per" keep their spelling: "_rad_s" is rad/s, "_m_s" m/s,
+// "_m_s2" m/s^2, "_kg_m3" kg/m^3, while "_kg_m2", "_N_m_s" and "_N_m_s2" are products.
+std::string_view SuffixUnit(std::string_view name) {
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 23> kUnits = {{
       {"_N_m_s2", "N m s^2"},
-      {"_N_per_m_n", "N/m^n"},
-      {"_N_s_per_m", "N s/m"},
-      {"_s_per_m", "s/m"},
-      {"_N_per_m", "N/m"},
-      {"_per_m", "1/m"},
-      {"_N_per_A", "N/A"},
-      {"_A_per_s", "A/s"},
+      {"_N_m_s", "N m s"},
       {"_kg_m3", "kg/m^3"},
       {"_kg_m2", "kg m^2"},
-      {"_N_m_s", "N m s"},
       {"_rad_s", "rad/s"},
+      {"_N_m2", "N m^2"},
       {"_m_s2", "m/s^2"},
+      {"_kg_m", "kg m"},
       {"_N_m", "N m"},
+      {"_N_s", "N s"},
+      {"_m_s", "m/s"},
+      {"_bps", "bit/s"},
       {"_rad", "rad"},
       {"_kg", "kg"},
       {"_Pa", "Pa"},
+      {"_Hz", "Hz"},
+      {"_m2", "m^2"},
       {"_A", "A"},
       {"_N", "N"},
+      {"_T", "T"},
+      {"_V", "V"},
       {"_m", "m"},
       {"_s", "s"},
   }};
   for (const auto& [suffix, unit] : kUnits) {
-    if (key.ends_with(suffix)) return std::string(unit);
+    if (name.ends_with(suffix)) return unit;
+  }
+  // Sensor and CAN counts: "counts_per_m", "scale_A_per_count".
+  if (name == "count" || name == "counts" || name.ends_with("_count") ||
+      name.ends_with("_counts")) {
+    return "count";
   }
   return {};
+}
+
+// The unit after "_per_": one base unit with an optional power ("m", "m2", "A2"), a contact
+// law's exponent ("m1_5", "m_n", "m_e"), or a product of base units. "" when it is none.
+std::string DenominatorUnit(std::string_view text) {
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 3> kPowers = {{
+      {"m1_5", "m^1.5"},
+      {"m_n", "m^n"},
+      {"m_e", "m^e"},
+  }};
+  for (const auto& [name, unit] : kPowers) {
+    if (text == name) return std::string(unit);
+  }
+  static constexpr std::array<std::string_view, 11> kBase = {"kg", "rad", "Pa", "Hz", "count", "m",
+                                                             "s",  "A",   "V",  "N",  "T"};
+  std::string out;
+  int factors = 0;
+  while (!text.empty()) {
+    const std::size_t end = std::min(text.find('_'), text.size());
+    std::string_view token = text.substr(0, end);
+    text = end < text.size() ? text.substr(end + 1) : std::string_view();
+    std::string_view power;
+    const std::size_t digits = token.find_first_of("0123456789");
+    if (digits != std::string_view::npos && digits > 0) {
+      power = token.substr(digits);
+      token = token.substr(0, digits);
+      if (power.find_first_not_of("0123456789") != std::string_view::npos) return {};
+    }
+    if (std::find(kBase.begin(), kBase.end(), token) == kBase.end()) return {};
+    if (factors++ > 0) out += ' ';
+    out += token;
+    if (!power.empty()) out += fmt::format("^{}", power);
+  }
+  if (factors == 0) return {};
+  return factors == 1 ? out : fmt::format("({})", out);
+}
+
+}  // namespace
+
+std::string UnitOfKey(std::string_view key) {
+  // A compound X_per_Y reads X/Y: "sensor_gain_V_per_m" V/m, "ki_per_s" 1/s (the name before
+  // "per" carries no unit), "scale_rad_s_per_count" (rad/s)/count.
+  const std::size_t per = key.rfind("_per_");
+  if (per != std::string_view::npos) {
+    const std::string denominator = DenominatorUnit(key.substr(per + 5));
+    if (!denominator.empty()) {
+      const std::string_view numerator = SuffixUnit(key.substr(0, per));
+      if (numerator.empty()) return "1/" + denominator;
+      if (numerator.find('/') != std::string_view::npos) {
+        return fmt::format("({})/{}", numerator, denominator);
+      }
+      return fmt::format("{}/{}", numerator, denominator);
+    }
+  }
+  return std::string(SuffixUnit(key));
 }
 
 std::string ExpectedWithUnit(std::string_view what, std::string_view key) {
@@ -190,7 +253,7 @@ TableReader::TableReader(const toml::table& table, std::string path, std::string
     : table_(&table), path_(std::move(path)), source_name_(std::move(source_name)), log_(log) {}
 
 void TableReader::Log(std::string_view key, double value, const NumberRule& rule,
-                      const toml::node* node) const {
+                      const toml::node* node, bool integer) const {
   if (log_ == nullptr) return;
   ConfigKey k;
   k.path = KeyPath(key);
@@ -198,6 +261,7 @@ void TableReader::Log(std::string_view key, double value, const NumberRule& rule
   k.key_class = ClassOfKey(k.path);
   k.value = value;
   k.declared = node != nullptr;
+  k.integer = integer;
   k.lower = rule.lower;
   k.upper = rule.upper;
   k.lower_inclusive = rule.lower_inclusive;
@@ -259,26 +323,32 @@ std::optional<double> TableReader::OptionalNumber(std::string_view key,
 }
 
 int TableReader::Integer(std::string_view key, int lower, int upper, int fallback) const {
+  return static_cast<int>(Integer64(key, lower, upper, fallback));
+}
+
+std::int64_t TableReader::Integer64(std::string_view key, std::int64_t lower, std::int64_t upper,
+                                    std::int64_t fallback) const {
+  // Logged like a number (the registry's range is the reader's), marked integer so that an
+  // override is written without a decimal point. A default outside the range is a sentinel
+  // ("none", "derived"), not a value, as in Number.
+  const NumberRule range{.lower = static_cast<double>(lower),
+                         .upper = static_cast<double>(upper),
+                         .what = "an integer"};
   const toml::node* node = Find(key);
-  if (node == nullptr) return fallback;
-  const std::string expected = upper == INT_MAX
+  if (node == nullptr) {
+    if (fallback >= lower && fallback <= upper) {
+      Log(key, static_cast<double>(fallback), range, nullptr, true);
+    }
+    return fallback;
+  }
+  const std::string expected = upper == INT_MAX || upper == INT64_MAX
                                    ? fmt::format("an integer >= {}", lower)
                                    : fmt::format("an integer in [{}, {}]", lower, upper);
   const auto* integer = node->as_integer();
   if (integer == nullptr || integer->get() < lower || integer->get() > upper) {
     Fail(key, expected);
   }
-  return static_cast<int>(integer->get());
-}
-
-std::int64_t TableReader::Integer64(std::string_view key, std::int64_t lower, std::int64_t upper,
-                                    std::int64_t fallback) const {
-  const toml::node* node = Find(key);
-  if (node == nullptr) return fallback;
-  const auto* integer = node->as_integer();
-  if (integer == nullptr || integer->get() < lower || integer->get() > upper) {
-    Fail(key, fmt::format("an integer in [{}, {}]", lower, upper));
-  }
+  Log(key, static_cast<double>(integer->get()), range, node, true);
   return integer->get();
 }
 

@@ -115,8 +115,8 @@ class TableReader {
 
  private:
   const toml::node& Require(std::string_view key, std::string_view expected) const;
-  void Log(std::string_view key, double value, const NumberRule& rule,
-           const toml::node* node) const;
+  void Log(std::string_view key, double value, const NumberRule& rule, const toml::node* node,
+           bool integer = false) const;
 
   const toml::table* table_;
   std::string path_;

@@ -194,11 +194,18 @@ Model BuildModel(const ModelParams& params, const ReducedRotor& rotor) {
   m.restore_step = params.trigger.enabled && params.trigger.restore_time_s >= 0.0
                        ? StepAt(params.trigger.restore_time_s, dt, m.total_steps)
                        : -1;
+  m.levitated = ComputeLevitatedStart(m);
   return m;
 }
 
 ControlInput StaticLoadInput(const Model& m) {
   ControlInput input;
+  if (m.levitated.moved) {
+    for (std::size_t a = 0; a < m.params.ambs.size(); ++a) {
+      input.amb[a].current_A = m.levitated.current_A[a];
+    }
+    return input;
+  }
   for (std::size_t a = 0; a < m.params.ambs.size(); ++a) {
     for (int axis = 0; axis < 2; ++axis) {
       input.amb[a].current_A[axis] =
@@ -206,6 +213,14 @@ ControlInput StaticLoadInput(const Model& m) {
     }
   }
   return input;
+}
+
+bool HoldsLevitatedStart(const Model& m, const ControlInput& input) {
+  if (!m.levitated.moved) return false;
+  for (std::size_t a = 0; a < m.params.ambs.size(); ++a) {
+    if (input.amb[a].current_A != m.levitated.current_A[a]) return false;
+  }
+  return true;
 }
 
 ModalVector PoweredEquilibrium(const Model& m, const ControlInput& input) {

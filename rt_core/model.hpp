@@ -5,6 +5,7 @@
 
 #include "rt_core/control_input.hpp"
 #include "rt_core/eigen_types.hpp"
+#include "rt_core/levitated_start.hpp"
 #include "rt_core/model_params.hpp"
 #include "rt_core/plane_model.hpp"
 #include "rt_core/reduced_rotor.hpp"
@@ -37,6 +38,11 @@ struct Model {
 
   PlaneModel planes;  ///< the same equations by bending plane, for the step
 
+  /// Where a run under the in-process controller starts and what holds it there
+  /// (ComputeLevitatedStart): the reference start unless a sensor offset, or a static load the
+  /// feedforward leaves to the controller, moves it.
+  LevitatedStart levitated;
+
   int state_size = 0;
   std::int64_t trigger_step = -1;  ///< first step without AMB forces (-1: never)
   std::int64_t restore_step = -1;  ///< first step with power back (-1: never)
@@ -55,12 +61,18 @@ Model BuildModel(const ModelParams& params);
 /// (of params with equal ReductionInputsOf).
 Model BuildModel(const ModelParams& params, const ReducedRotor& rotor);
 
-/// Control currents that carry the static load (amb_bias_force_N) at the centre: the levitated
-/// starting point of a run driven by a controller.
+/// Control currents that hold the rotor at its levitated start: those of Model::levitated when it
+/// moved, else the currents that carry the static load (amb_bias_force_N) at the centre. What a
+/// run driven by a controller applies until the controller's first command, and records as its
+/// start.
 ControlInput StaticLoadInput(const Model& model);
 
 /// Static equilibrium q of the powered rotor for the given AMB control currents, the
 /// current-driven laws linearised at the centre (zero if singular).
 ModalVector PoweredEquilibrium(const Model& model, const ControlInput& input);
+
+/// True when `input` carries exactly the currents of a moved Model::levitated start: a run
+/// handed them starts at Model::levitated.q (Simulator::InitialState).
+bool HoldsLevitatedStart(const Model& model, const ControlInput& input);
 
 }  // namespace ambdrop

@@ -36,10 +36,13 @@ State Simulator::InitialState(const ControlInput& input) const {
   State s;
   s.y = StateVector::Zero(model_.state_size);
   // A rotor that starts powered (levitated, or on linear bearings) starts at its static
-  // equilibrium; one that starts dropped starts centred.
+  // equilibrium; one that starts dropped starts centred. Handed the currents of its controller's
+  // moved levitated start, it starts there: the exact equilibrium the controller holds (a
+  // record made before that start existed carries other currents and replays as it ran).
   const bool powered = model_.trigger_step != 0;
   if (model_.params.simulation.initial_position == InitialPosition::kEquilibrium && powered) {
-    s.y.head(n) = PoweredEquilibrium(model_, input);
+    s.y.head(n) =
+        HoldsLevitatedStart(model_, input) ? model_.levitated.q : PoweredEquilibrium(model_, input);
   }
   s.y(model_.spin_index()) = model_.params.simulation.spin_speed_rad_s;
   for (std::size_t i = 0; i < model_.tdbs.size(); ++i) {

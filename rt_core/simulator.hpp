@@ -30,7 +30,8 @@ class Simulator {
   explicit Simulator(const Model& model);
 
   /// Initial state: the configured initial position (the powered equilibrium for the given
-  /// initial currents, or centred), the configured spin speed, TDBs at rest.
+  /// initial currents, Model::levitated.q for the currents of a moved levitated start, or
+  /// centred), the configured spin speed, TDBs at rest.
   State InitialState(const ControlInput& initial_input = {}) const;
   /// Advances one fixed step with the control input held over it.
   StepStatus Step(State* state, const ControlInput& input) noexcept;

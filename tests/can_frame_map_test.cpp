@@ -789,10 +789,10 @@ TEST(CanConfigErrors, Scaling) {
   std::string text = Replace(kConfig, "scale_A_per_count = 0.001", "scale_A_per_count = 0");
   EXPECT_EQ(ErrorOf(text), At(text, "scale_A_per_count = 0") +
                                "key 'can.currents_in.de.x.scale_A_per_count': expected a non-zero "
-                               "finite number (A per count), found 0");
+                               "finite number (A/count), found 0");
   text = Replace(kConfig, "scale_m_per_count = 1e-7", "scale_m_per_count = nan");
   EXPECT_THAT(ErrorOf(text), HasSubstr("key 'can.sensors_out.s_de.x.scale_m_per_count': "
-                                       "expected a non-zero finite number (m per count), found "
+                                       "expected a non-zero finite number (m/count), found "
                                        "nan"));
   text = Replace(kConfig, "offset_A = 0.5", "offset_A = \"half\"");
   EXPECT_EQ(ErrorOf(text), At(text, "offset_A") +
@@ -801,7 +801,7 @@ TEST(CanConfigErrors, Scaling) {
   text = Replace(kConfig, "scale_rad_s_per_count = 0.1\n", "");
   EXPECT_THAT(ErrorOf(text), HasSubstr("missing key 'can.status_out.spin_speed."
                                        "scale_rad_s_per_count': expected a non-zero finite "
-                                       "number (rad/s per count)"));
+                                       "number ((rad/s)/count)"));
 }
 
 TEST(CanConfigErrors, Triggers) {

@@ -2,17 +2,22 @@
 // a `--set` path that reaches exactly that number, a class that keeps solver and measurement keys
 // out of a fit, and a default fit range inside what the readers accept.
 #include <fmt/format.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/config_keys.hpp"
 #include "io/config_loader.hpp"
+#include "io/config_variants.hpp"
+#include "io/toml_reader.hpp"
 #include "test_configs.hpp"
 
 namespace ambdrop {
@@ -64,6 +69,113 @@ TEST(ConfigKeys, KeysOfASwitchedOffTableAreNotInForce) {
   EXPECT_TRUE(ByPath(on.keys).at("amb.de.flux_decay.time_constant_s").in_force);
 }
 
+// The unit comes from the key's name: a compound X_per_Y is X/Y ("1/Y" when the name carries no
+// numerator unit), and the house's compounds without "per" keep their spelling (rad/s, m/s^2,
+// kg/m^3, N m s). One row per unit suffix the readers use.
+TEST(ConfigKeys, UnitsFollowTheKeysNamesIncludingCompoundsWithPer) {
+  const std::vector<std::pair<std::string, std::string>> kCases = {
+      // X_per_Y
+      {"sensor_gain_V_per_m", "V/m"},
+      {"amplifier_gain_A_per_V", "A/V"},
+      {"ki_per_s", "1/s"},
+      {"beta_per_m", "1/m"},
+      {"lower_hardening_rate_per_m", "1/m"},
+      {"stiffness_N_per_m", "N/m"},
+      {"quadratic_stiffness_N_per_m2", "N/m^2"},
+      {"inner_contact_stiffness_N_per_m1_5", "N/m^1.5"},
+      {"stiffness_N_per_m_n", "N/m^n"},
+      {"stiffness_N_per_m_e", "N/m^e"},
+      {"damping_N_s_per_m", "N s/m"},
+      {"damping_x_N_s_per_m", "N s/m"},
+      {"damping_s_per_m", "s/m"},
+      {"regularisation_s_per_m", "s/m"},
+      {"drag_regularisation_s_per_rad", "s/rad"},
+      {"current_gain_N_per_A", "N/A"},
+      {"slew_rate_A_per_s", "A/s"},
+      {"constant_N_m2_per_A2", "N m^2/A^2"},
+      {"scale_A_per_count", "A/count"},
+      {"scale_m_per_count", "m/count"},
+      {"scale_rad_s_per_count", "(rad/s)/count"},
+      {"counts_per_m", "count/m"},
+      // compounds without "per", and single units
+      {"spin_speed_rad_s", "rad/s"},
+      {"offset_rad_s", "rad/s"},
+      {"stick_speed_m_s", "m/s"},
+      {"acceleration_m_s2", "m/s^2"},
+      {"density_kg_m3", "kg/m^3"},
+      {"inertia_kg_m2", "kg m^2"},
+      {"pole_area_m2", "m^2"},
+      {"eccentricity_kg_m", "kg m"},
+      {"drag_torque_N_m", "N m"},
+      {"rotational_damping_N_m_s", "N m s"},
+      {"windage_N_m_s2", "N m s^2"},
+      {"bitrate_bps", "bit/s"},
+      {"youngs_modulus_Pa", "Pa"},
+      {"cutoff_Hz", "Hz"},
+      {"flux_density_T", "T"},
+      {"bias_current_A", "A"},
+      {"slipping_threshold_N", "N"},
+      {"mass_kg", "kg"},
+      {"phase_rad", "rad"},
+      {"clearance_m", "m"},
+      {"kd_s", "s"},
+      // dimensionless
+      {"gain", ""},
+      {"kp", ""},
+      {"palmgren_f1", ""},
+      {"exponent", ""},
+  };
+  for (const auto& [key, unit] : kCases) {
+    EXPECT_EQ(KeyUnit(key), unit) << key;
+    EXPECT_EQ(config_detail::UnitOfKey(key), unit) << key;
+  }
+}
+
+// Error messages print the same unit, once.
+TEST(ConfigKeys, ErrorsPrintTheCompoundUnitOnce) {
+  // The CAN rig: the PID rig with a [can] table.
+  const std::string pid = testing::ConfigPath("jarroux2019_industrial_pid_can.toml");
+  const auto error_of = [&](const std::string& set) {
+    try {
+      LoadConfig(pid, {set});
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_THAT(error_of("controller.pid.sensor_gain_V_per_m=-1"),
+              ::testing::HasSubstr("(V/m), found -1"));
+  EXPECT_THAT(error_of("controller.pid.amplifier_gain_A_per_V=-1"),
+              ::testing::HasSubstr("(A/V), found -1"));
+  EXPECT_THAT(error_of("controller.pid.ki_per_s=-1"), ::testing::HasSubstr("(1/s), found -1"));
+  // Readers whose own wording named the unit must not print it a second time.
+  const std::vector<std::pair<std::string, std::string>> kOnce = {
+      {"can.bitrate_bps=0", "(bit/s)"},
+      {"can.currents_in.de.x.scale_A_per_count=0", "(A/count)"},
+      {"controller.pid.ki_per_s=-1", "(1/s)"}};
+  for (const auto& [set, unit] : kOnce) {
+    const std::string text = error_of(set);
+    const std::size_t first = text.find(unit);
+    ASSERT_NE(first, std::string::npos) << text;
+    EXPECT_EQ(text.find(unit, first + 1), std::string::npos) << "printed twice: " << text;
+  }
+}
+
+// Every key of every rig whose name is a compound X_per_Y carries a unit with a "/".
+TEST(ConfigKeys, EveryCompoundKeyOfEveryRigHasAQuotientUnit) {
+  std::size_t checked = 0;
+  for (const std::string& rig : testing::RigConfigFiles()) {
+    for (const ConfigKey& k : LoadConfig(testing::ConfigPath(rig)).keys) {
+      const std::string last = k.path.substr(k.path.rfind('.') + 1);
+      if (last.find("_per_") == std::string::npos) continue;
+      EXPECT_NE(k.unit.find('/'), std::string::npos)
+          << rig << ": " << k.path << " [" << k.unit << "]";
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 20u);
+}
+
 TEST(ConfigKeys, EveryRigRecordsItsNumbersWithUnitsAndClasses) {
   for (const std::string& rig : testing::RigConfigFiles()) {
     SCOPED_TRACE(rig);
@@ -101,6 +213,84 @@ TEST(ConfigKeys, DefaultFitRangesHoldTheValueInsideTheAcceptedRange) {
   }
 }
 
+// Integer keys are in the registry too, marked integer with the reader's range, so that a fit
+// can offer a controller's computation delay; counts that only decide how finely the model is
+// computed (modes, elements) or observed (noise seeds) are not the machine's.
+TEST(ConfigKeys, IntegerKeysAreListedWithTheirRangeAndClass) {
+  const std::string path = testing::ConfigPath("jarroux2019_industrial_pid.toml");
+  const LoadedConfig loaded = LoadConfig(path);
+  const ConfigKey* delay = FindKey(loaded.keys, "controller.delay_samples");
+  ASSERT_NE(delay, nullptr) << "controller.delay_samples is not in the registry";
+  EXPECT_TRUE(delay->integer);
+  EXPECT_EQ(delay->key_class, KeyClass::kPhysical);
+  EXPECT_FALSE(delay->declared);
+  EXPECT_EQ(delay->value, 0.0);
+  EXPECT_EQ(delay->lower, 0.0);
+  EXPECT_EQ(delay->upper, 16.0);
+  EXPECT_EQ(delay->unit, "");
+  const ConfigKey* modes = FindKey(loaded.keys, "rotor.modes");
+  ASSERT_NE(modes, nullptr);
+  EXPECT_TRUE(modes->integer);
+  EXPECT_EQ(modes->key_class, KeyClass::kSolver);
+  const ConfigKey* seed = FindKey(loaded.keys, "sensor.de.noise.seed");
+  ASSERT_NE(seed, nullptr);
+  EXPECT_TRUE(seed->integer);
+  EXPECT_EQ(seed->key_class, KeyClass::kMeasurement);
+  EXPECT_FALSE(FindKey(loaded.keys, "tdb.de.clearance_m")->integer);
+  // A fit searches whole numbers of samples, inside the reader's range.
+  const FitRange r = DefaultFitRange(*delay);
+  EXPECT_EQ(r.lower, std::floor(r.lower));
+  EXPECT_EQ(r.upper, std::floor(r.upper));
+  EXPECT_TRUE(r.lower <= 0.0 && 0.0 < r.upper && r.upper <= 16.0) << r.lower << ", " << r.upper;
+
+  // An integer override is written without a decimal point, which the integer reader refuses.
+  EXPECT_EQ(OverrideInteger(2), "2");
+  const LoadedConfig two = LoadConfig(path, {"controller.delay_samples=" + OverrideInteger(2)});
+  EXPECT_EQ(two.params.controller.delay_samples, 2);
+  const ConfigKey* set = FindKey(two.keys, "controller.delay_samples");
+  ASSERT_NE(set, nullptr);
+  EXPECT_EQ(set->value, 2.0);
+  EXPECT_TRUE(set->declared);
+  EXPECT_THROW(LoadConfig(path, {"controller.delay_samples=" + OverrideNumber(2.0)}), ConfigError);
+  // OverrideFor picks the form the key takes.
+  EXPECT_EQ(OverrideFor(*delay, 3.0), "controller.delay_samples=3");
+  EXPECT_EQ(OverrideFor(*FindKey(loaded.keys, "tdb.de.clearance_m"), 2.0),
+            "tdb.de.clearance_m=2.0");
+}
+
+// Every integer key of every rig, written back with OverrideInteger, reads the same value; a
+// neighbouring value is read as given, or refused with a message that names the key's table.
+TEST(ConfigKeys, EveryIntegerKeyOfEveryRigRoundTripsThroughSet) {
+  std::size_t checked = 0;
+  for (const std::string& rig : testing::RigConfigFiles()) {
+    SCOPED_TRACE(rig);
+    const std::string path = testing::ConfigPath(rig);
+    for (const ConfigKey& k : LoadConfig(path).keys) {
+      if (!k.integer) continue;
+      const auto value = static_cast<std::int64_t>(k.value);
+      ASSERT_EQ(static_cast<double>(value), k.value) << k.path;
+      const LoadedConfig same = LoadConfig(path, {k.path + "=" + OverrideInteger(value)});
+      const ConfigKey* again = FindKey(same.keys, k.path);
+      ASSERT_NE(again, nullptr) << k.path;
+      EXPECT_EQ(again->value, k.value) << k.path;
+      EXPECT_TRUE(again->declared) << k.path;
+      EXPECT_TRUE(again->integer) << k.path;
+      const std::int64_t other = k.value + 1.0 <= k.upper ? value + 1 : value - 1;
+      try {
+        const LoadedConfig moved = LoadConfig(path, {k.path + "=" + OverrideInteger(other)});
+        EXPECT_EQ(FindKey(moved.keys, k.path)->value, static_cast<double>(other)) << k.path;
+      } catch (const ConfigError& e) {
+        // Refused for what it does to its neighbours (a CAN signal overlapping another, a
+        // second deck without its table): the message names the key's table.
+        const std::string table = k.path.substr(0, k.path.rfind('.'));
+        EXPECT_NE(std::string(e.what()).find(table), std::string::npos) << e.what();
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 20u);
+}
+
 // The registry's paths are exactly what --set accepts: setting a declared physical key to a
 // new value inside its fit range moves that key, and only that key, of everything declared.
 TEST(ConfigKeys, EveryDeclaredPhysicalKeyIsReachedByItsSetPath) {
@@ -114,14 +304,18 @@ TEST(ConfigKeys, EveryDeclaredPhysicalKeyIsReachedByItsSetPath) {
       const FitRange r = DefaultFitRange(k);
       double w = 0.5 * (r.lower + r.upper);
       if (w == k.value) w = r.lower + 0.25 * (r.upper - r.lower);
-      const std::string set = fmt::format("{}={:.17g}", k.path, w);
+      // An integer key takes whole numbers (its range's ends are whole).
+      if (k.integer) w = std::round(w) != k.value ? std::round(w) : r.upper;
+      const std::string set = OverrideFor(k, w);
       LoadedConfig moved;
       try {
         moved = LoadConfig(path, {set});
       } catch (const ConfigError& e) {
         // Other keys may bound this one (a bore inside its shaft): that is a refusal with a
-        // reason, not a lost key. It must name the key it was given.
-        EXPECT_NE(std::string(e.what()).find(k.path), std::string::npos) << set << ": " << e.what();
+        // reason, not a lost key. It must name the key it was given; a count may change the
+        // structure instead (a second deck needs its table), and name that table.
+        const std::string named = k.integer ? k.path.substr(0, k.path.rfind('.')) : k.path;
+        EXPECT_NE(std::string(e.what()).find(named), std::string::npos) << set << ": " << e.what();
         continue;
       }
       const auto after = ByPath(moved.keys);

@@ -10,7 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "io/config_keys.hpp"
 #include "io/config_loader.hpp"
+#include "io/config_variants.hpp"
 #include "rt_core/contact_law_tdb.hpp"
 #include "rt_core/tdb_common.hpp"
 #include "rt_core/tdb_factory.hpp"
@@ -53,6 +55,49 @@ TEST(InnerRaceRadius, AbsentIsJournalRadiusPlusClearanceBitForBit) {
     const TdbParams p = testing::LoadTestConfig(rig.file).tdbs[0];
     EXPECT_EQ(p.inner_race_radius_m, 0.0) << rig.file;
     EXPECT_EQ(InnerRaceRadius(p), p.journal_radius_m + p.clearance_m) << rig.file;
+  }
+}
+
+// Absent, the key is listed in the registry (ambdrop keys, the fit's candidates) as a default,
+// at the derived value; and it still follows the journal radius and clearance whenever they move
+// and it does not: given with --set (a fit moving the clearance alone) or changed in the
+// parameters after loading. Declared, it stays where it is put.
+TEST(InnerRaceRadius, AbsentIsListedAsADerivedDefaultThatFollowsTheClearance) {
+  for (const Rig& rig : kRigs) {
+    SCOPED_TRACE(rig.file);
+    const std::string table = std::string("tdb.") + rig.tdb + ".";
+    const std::string key = table + "inner_race_radius_m";
+    const LoadedConfig loaded = LoadConfig(testing::ConfigPath(rig.file));
+    const TdbParams& t = Named(loaded.params, rig.tdb);
+    const ConfigKey* listed = FindKey(loaded.keys, key);
+    ASSERT_NE(listed, nullptr) << key << " is not in the registry";
+    EXPECT_FALSE(listed->declared);
+    EXPECT_EQ(listed->value, t.journal_radius_m + t.clearance_m);
+    EXPECT_EQ(listed->unit, "m");
+    EXPECT_EQ(listed->key_class, KeyClass::kPhysical);
+    EXPECT_EQ(listed->lower, t.journal_radius_m);
+    EXPECT_EQ(t.inner_race_radius_m, 0.0) << "the parameters keep the 'derived' sentinel";
+
+    const double clearance = 1.5 * t.clearance_m;
+    const double journal = 0.9 * t.journal_radius_m;
+    for (const std::vector<std::string>& moved :
+         {std::vector<std::string>{table + "clearance_m=" + OverrideNumber(clearance)},
+          std::vector<std::string>{table + "journal_radius_m=" + OverrideNumber(journal)}}) {
+      const LoadedConfig m = LoadConfig(testing::ConfigPath(rig.file), moved);
+      const TdbParams& mt = Named(m.params, rig.tdb);
+      EXPECT_EQ(InnerRaceRadius(mt), mt.journal_radius_m + mt.clearance_m) << moved[0];
+      EXPECT_EQ(FindKey(m.keys, key)->value, mt.journal_radius_m + mt.clearance_m) << moved[0];
+      EXPECT_FALSE(FindKey(m.keys, key)->declared) << moved[0];
+    }
+    TdbParams copy = t;
+    copy.clearance_m = clearance;
+    EXPECT_EQ(InnerRaceRadius(copy), copy.journal_radius_m + clearance);
+
+    // Written back at its listed value, it is declared and stays when the clearance moves.
+    const LoadedConfig pinned = LoadConfig(
+        testing::ConfigPath(rig.file),
+        {OverrideFor(*listed, listed->value), table + "clearance_m=" + OverrideNumber(clearance)});
+    EXPECT_EQ(InnerRaceRadius(Named(pinned.params, rig.tdb)), listed->value);
   }
 }
 

@@ -37,6 +37,7 @@ int RunKeysCommand(const KeysOptions& options) {
       json.Key("unit").String(k->unit);
       json.Key("class").String(KeyClassName(k->key_class));
       json.Key("declared").Bool(k->declared);
+      json.Key("integer").Bool(k->integer);
       json.Key("location").String(k->location);
       json.Key("fit_range").BeginArray();
       json.Number(range.lower);
@@ -53,9 +54,11 @@ int RunKeysCommand(const KeysOptions& options) {
              "fit range", "declared at");
   for (const ConfigKey* k : shown) {
     const FitRange range = DefaultFitRange(*k);
-    const std::string fit = k->key_class == KeyClass::kPhysical
-                                ? fmt::format("[{:.4g}, {:.4g}]", range.lower, range.upper)
-                                : std::string("-");
+    // An integer key's range holds whole numbers only ("[0, 2] int").
+    const std::string fit =
+        k->key_class == KeyClass::kPhysical
+            ? fmt::format("[{:.4g}, {:.4g}]{}", range.lower, range.upper, k->integer ? " int" : "")
+            : std::string("-");
     fmt::print("{:<52} {:>14.6g} {:<9} {:<11} {:<27} {}\n", k->path, k->value,
                k->unit.empty() ? "-" : k->unit, KeyClassName(k->key_class), fit,
                k->declared ? k->location : std::string("(default)"));
