@@ -1,6 +1,7 @@
 #include "tools/fit/key_effects.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "io/config_variants.hpp"
@@ -40,12 +41,18 @@ Effect DeclaredValueOff(const ConfigKey& key, KeyEffectInfo info, FitRange range
                     StartsAround(key.value, range.lower, range.upper)};
   // Declared 0, it may be any size from nothing: a small change is relative to the value.
   p.magnitude = key.value == 0.0;
+  // A count (a delay in whole samples): the search steps through whole numbers.
+  if (key.integer) {
+    p.quantum = 1.0;
+    p.magnitude = false;
+    for (double& s : p.starts) s = std::round(s);
+  }
   e.parameters = {p};
   // The far end of the range from the declared value: strong, as a probe must be.
   e.probe = {range.upper - key.value >= key.value - range.lower ? range.upper : range.lower};
-  const std::string path = key.path;
-  e.overrides = [path](const std::vector<double>& v) {
-    return std::vector<std::string>{path + "=" + OverrideNumber(v[0])};
+  const ConfigKey k = key;
+  e.overrides = [k](const std::vector<double>& v) {
+    return std::vector<std::string>{OverrideFor(k, v[0])};
   };
   return e;
 }

@@ -56,9 +56,9 @@ bool IsStation(const std::string& path) {
   return path.ends_with(".position_m") || path.ends_with(".centre_of_mass_m");
 }
 
-bool Accepts(const ConfigVariants& config, const std::string& path, double value) {
+bool Accepts(const ConfigVariants& config, const ConfigKey& key, double value) {
   try {
-    config.With({path + "=" + OverrideNumber(value)});
+    config.With({OverrideFor(key, value)});
     return true;
   } catch (const ConfigError&) {
     return false;
@@ -69,12 +69,20 @@ bool Accepts(const ConfigVariants& config, const std::string& path, double value
 // refuses is drawn in towards the declared value (bisection, to 1/256 of the way).
 FitRange AcceptedRange(const ConfigVariants& config, const ConfigKey& key, FitRange range) {
   const double v = std::clamp(key.value, range.lower, range.upper);
+  if (key.integer) {
+    // Whole numbers, each end drawn in one at a time.
+    range.lower = std::ceil(range.lower);
+    range.upper = std::floor(range.upper);
+    while (range.lower < v && !Accepts(config, key, range.lower)) range.lower += 1.0;
+    while (range.upper > v && !Accepts(config, key, range.upper)) range.upper -= 1.0;
+    return range;
+  }
   for (double* end : {&range.lower, &range.upper}) {
-    if (Accepts(config, key.path, *end)) continue;
+    if (Accepts(config, key, *end)) continue;
     double good = v, bad = *end;
     for (int i = 0; i < 8; ++i) {
       const double mid = 0.5 * (good + bad);
-      (Accepts(config, key.path, mid) ? good : bad) = mid;
+      (Accepts(config, key, mid) ? good : bad) = mid;
     }
     *end = good;
   }
@@ -135,8 +143,8 @@ std::vector<Effect> RegistryCandidates(const ConfigVariants& config,
          fmt::format("the value of {} is off ({})", key.path, Declared(key)), EveryQuantity()},
         range));
     effects.back().screened = true;
-    // Every station moved by one factor is no one's mistake.
-    if (split.item.empty() || IsStation(key.path)) continue;
+    // Every station moved by one factor is no one's mistake; a count is not scaled.
+    if (split.item.empty() || IsStation(key.path) || key.integer) continue;
     auto [it, added] = groups.try_emplace(split.pattern);
     if (added) patterns.push_back(split.pattern);
     it->second.emplace_back(key, range);

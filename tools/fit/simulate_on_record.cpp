@@ -264,8 +264,8 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
       if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
       const SensorParams& s = model.params.sensors[ch.index];
       const auto [value, slope] = LocalLine(r, r.Column(ch.column), t_start, half_window);
-      rows_q.push_back(model.sensor_shapes[ch.index].row(ch.axis) * s.gain);
-      pos.push_back(value - s.offset_m);
+      rows_q.push_back(model.sensor_shapes[ch.index].row(ch.axis) * s.AxisGain(ch.axis));
+      pos.push_back(value - s.AxisOffset_m(ch.axis));
       vel.push_back(slope);
     }
     if (!rows_q.empty()) {
