@@ -464,15 +464,15 @@ TEST(FitVerdicts, ADeclaredNumberThatIsOffIsNamedByItsKey) {
   // Within 5 % of the true change from the declared value (628 kg/m^3).
   EXPECT_NEAR(p->value, 8478.0, 0.05 * 628.0);
   EXPECT_GE(AboveNoise(s.rms_before, s.noise_floor), 3.0 * AboveNoise(s.rms_after, s.noise_floor));
-  // Most keys were screened, not fitted: the full fits are the hand-made families and the best
-  // few of the screening.
+  // Most keys were screened, not fitted: the full fits are the hand-made families, the best few
+  // of the screening, and as many look-alikes of the chosen effect.
   int screened = 0, screened_and_fitted = 0;
   for (const CandidateScore& c : s.candidates) {
     screened += c.screened;
     screened_and_fitted += c.screened && c.tried;
   }
   EXPECT_GT(screened, 40);
-  EXPECT_LE(screened_and_fitted, SelectionRules{}.screened_fits);
+  EXPECT_LE(screened_and_fitted, 2 * SelectionRules{}.screened_fits);
 }
 
 TEST(FitVerdicts, AnEffectOutsideTheCandidatesIsNotClaimedExplained) {

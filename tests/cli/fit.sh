@@ -35,10 +35,11 @@ before, after = f["rms_before"], f["rms_after"]
 assert before["overall"] > 3 * after["overall"], (before["overall"], after["overall"])
 assert set(before["channels"]) == set(after["channels"]) and "y_de" in before["channels"]
 assert len(f["candidates"]) >= 10 and all("effect" in c for c in f["candidates"])
-# Every decidable hand-made family is fitted; of the registry's screened keys only the best few.
+# Every decidable hand-made family is fitted; of the registry's screened keys only the best few
+# and as many look-alikes of the chosen effect.
 assert all(c["tried"] for c in f["candidates"] if c["decidable"] and not c["screened"]), f["candidates"]
 screened = [c for c in f["candidates"] if c["screened"]]
-assert len(screened) > 20 and sum(c["tried"] for c in screened) <= 6, len(screened)
+assert len(screened) > 20 and sum(c["tried"] for c in screened) <= 12, len(screened)
 assert all("screened_rms" in c for c in screened if c["decidable"]), screened
 assert f["decidable_candidates"] == sum(c["decidable"] for c in f["candidates"]), f["decidable_candidates"]
 # An offset TDB shows in the drop's start, which the verdict then judges (the whole record

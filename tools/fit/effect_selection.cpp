@@ -131,6 +131,16 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
   s.rms_after = s.rms_before;
   s.limit_after = s.limit;
 
+  // How far a candidate must move the prediction for the record to tell it from its absence:
+  // beyond the model's own sensitivity (twice the model floor, as in the limit) and beyond half
+  // the noise floor. Not the whole limit: the noise is in the record and in neither prediction,
+  // and a move of half its RMS, over thousands of samples, is plain (a sensor's x gain 40 % low
+  // moved the start by 0.0055 against its noise floor of 0.0045 and explained the record as well
+  // as the TDB offset chosen; judged against the whole limit, 0.0066, it was never fitted).
+  const double resolvable =
+      std::max(std::sqrt(std::pow(rules.model_floor_factor * s.model_floor, 2) +
+                         rules.tolerance * rules.tolerance),
+               0.5 * s.noise_floor);
   // Singles: the hand-made families each fitted; the registry's many candidates screened
   // first (two runs each) and only the most promising fitted.
   std::vector<CandidateScore> singles(library.size());
@@ -157,7 +167,7 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
       if (at_floor) return;
       screenings[i] = ScreenCandidate(declared, cost, e, residual_before);
       c.reach = screenings[i].reach;
-      c.decidable = c.reach > s.limit;
+      c.decidable = c.reach > resolvable;
       c.screened_rms = OverallRms(cost, screenings[i].predicted_sse);
       return;
     }
@@ -165,7 +175,7 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
       const Eigen::VectorXd probed = ResidualWithEffects(declared, cost, {&e}, {e.probe});
       c.reach = OverallRms(cost, (probed - residual_before).squaredNorm());
       // Even strong, it would stay within the limit: no fit could tell it from its absence.
-      c.decidable = c.reach > s.limit;
+      c.decidable = c.reach > resolvable;
       if (!c.decidable) return;
     }
     // At the floor no candidate could be chosen: its fit would only cost runs (minutes for
@@ -312,6 +322,32 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
         for (CandidateScore& p : pairs) s.candidates.push_back(std::move(p));
       }
     }
+  }
+
+  // Look-alikes among the screened keys: where a chosen effect leaves about what a key's
+  // screening predicts, the key is fitted too, so that the record's inability to tell them apart
+  // is found and said (a sensor's x gain or a TDB's station that a TDB offset mimics). The
+  // screening's quadratic is rough: within twice the equivalence margin.
+  if (!s.chosen.empty()) {
+    std::vector<std::size_t> alike_keys;
+    for (std::size_t i = 0; i < singles.size(); ++i) {
+      const CandidateScore& c = singles[i];
+      if (c.screened && c.decidable && !c.tried &&
+          c.screened_rms <= s.rms_after * 2.0 * rules.equivalent_margin) {
+        alike_keys.push_back(i);
+      }
+    }
+    std::stable_sort(alike_keys.begin(), alike_keys.end(), [&](std::size_t a, std::size_t b) {
+      return screenings[a].predicted_sse < screenings[b].predicted_sse;
+    });
+    if (alike_keys.size() > static_cast<std::size_t>(std::max(rules.screened_fits, 0))) {
+      alike_keys.resize(static_cast<std::size_t>(std::max(rules.screened_fits, 0)));
+    }
+    ParallelFor(alike_keys.size(), rules.threads, [&](std::size_t k) {
+      const std::size_t i = alike_keys[k];
+      fit_single(i, {{{screenings[i].best_value}, false}});
+    });
+    for (const std::size_t i : alike_keys) s.candidates[i] = singles[i];
   }
 
   // What the record could not have shown: a verdict of agreement says nothing about these.
