@@ -4,7 +4,9 @@
 # it from that filter, with a ctest TIMEOUT: four fits, 173 s in all by hand) once it passes.
 # By hand on 2026-11-25 (fit code at a3b4b24): clearance_worn passes; clean fails (`explained`
 # by tdb_clearance:de), sensor_offset fails (tdb_misalignment:de named first, cut 1.3x),
-# side_pull fails (`partly_explained` by amb_flux_decay).
+# side_pull fails (`partly_explained` by amb_flux_decay). In the battery at f6c593a
+# (2026-11-26): clean, clearance_worn and sensor_offset pass; side_pull still fails
+# (`partly_explained` by the AMB constant on both AMBs, which cuts the drop's start 2.3x).
 #
 # Issue 15/23 "How it is checked": a subset of the independent records of tools/truth/ (a
 # simulator sharing no code with ambdrop) through `ambdrop fit` with the rig's translated config
