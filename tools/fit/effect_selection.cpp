@@ -102,12 +102,13 @@ namespace {
 
 // One part's agreement statistics (Selection::Part) for the declared model.
 Selection::Part JudgePart(const ConfigVariants& declared, const RecordCost& cost,
-                          const Eigen::VectorXd& residual_before, const SelectionRules& rules) {
+                          const Eigen::VectorXd& residual_before, double noise_floor,
+                          const SelectionRules& rules) {
   Selection::Part part;
   part.compared = true;
   part.rms_before = OverallRms(cost, residual_before.squaredNorm());
   part.rms_after = part.rms_before;
-  part.noise_floor = cost.NoiseFloor();
+  part.noise_floor = noise_floor;
   RecordRunOptions half = cost.run_options();
   half.step_s = 0.5 * (half.step_s > 0 ? half.step_s : cost.declared().simulation.step_s);
   const SimulatedRecord fine =
@@ -183,26 +184,33 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
     if (at_floor) return;
     fit_single(i, {});
   });
-  // The screened candidates worth a full fit: those whose predicted cut could be accepted,
-  // best first, at most SelectionRules::screened_fits; each searched from its screened best
-  // value too.
-  std::vector<std::size_t> promising;
-  for (std::size_t i = 0; i < singles.size(); ++i) {
-    if (singles[i].screened && singles[i].decidable && !at_floor &&
-        screenings[i].predicted_sse * rules.min_cut * rules.min_cut <= sse_before) {
-      promising.push_back(i);
+  // Fits the screened candidates that pass `wanted`, best predicted first, at most
+  // SelectionRules::screened_fits of them, each searched from its screened best value too.
+  // Returns their indices.
+  const auto fit_best_screened = [&](const auto& wanted) {
+    std::vector<std::size_t> picked;
+    for (std::size_t i = 0; i < singles.size(); ++i) {
+      if (singles[i].screened && singles[i].decidable && !singles[i].tried && wanted(i)) {
+        picked.push_back(i);
+      }
     }
+    std::stable_sort(picked.begin(), picked.end(), [&](std::size_t a, std::size_t b) {
+      return screenings[a].predicted_sse < screenings[b].predicted_sse;
+    });
+    const std::size_t most = static_cast<std::size_t>(std::max(rules.screened_fits, 0));
+    if (picked.size() > most) picked.resize(most);
+    ParallelFor(picked.size(), rules.threads, [&](std::size_t k) {
+      const std::size_t i = picked[k];
+      fit_single(i, {{{screenings[i].best_value}, false}});
+    });
+    return picked;
+  };
+  // Those whose predicted cut could be accepted at all.
+  if (!at_floor) {
+    fit_best_screened([&](std::size_t i) {
+      return screenings[i].predicted_sse * rules.min_cut * rules.min_cut <= sse_before;
+    });
   }
-  std::stable_sort(promising.begin(), promising.end(), [&](std::size_t a, std::size_t b) {
-    return screenings[a].predicted_sse < screenings[b].predicted_sse;
-  });
-  if (promising.size() > static_cast<std::size_t>(std::max(rules.screened_fits, 0))) {
-    promising.resize(static_cast<std::size_t>(std::max(rules.screened_fits, 0)));
-  }
-  ParallelFor(promising.size(), rules.threads, [&](std::size_t k) {
-    const std::size_t i = promising[k];
-    fit_single(i, {{{screenings[i].best_value}, false}});
-  });
   s.decidable_candidates = static_cast<int>(std::count_if(
       singles.begin(), singles.end(), [](const CandidateScore& c) { return c.decidable; }));
   // The best of M tries beats noise by about 2 ln M per parameter (SelectionRules).
@@ -329,23 +337,8 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
   // is found and said (a sensor's x gain or a TDB's station that a TDB offset mimics). The
   // screening's quadratic is rough: within twice the equivalence margin.
   if (!s.chosen.empty()) {
-    std::vector<std::size_t> alike_keys;
-    for (std::size_t i = 0; i < singles.size(); ++i) {
-      const CandidateScore& c = singles[i];
-      if (c.screened && c.decidable && !c.tried &&
-          c.screened_rms <= s.rms_after * 2.0 * rules.equivalent_margin) {
-        alike_keys.push_back(i);
-      }
-    }
-    std::stable_sort(alike_keys.begin(), alike_keys.end(), [&](std::size_t a, std::size_t b) {
-      return screenings[a].predicted_sse < screenings[b].predicted_sse;
-    });
-    if (alike_keys.size() > static_cast<std::size_t>(std::max(rules.screened_fits, 0))) {
-      alike_keys.resize(static_cast<std::size_t>(std::max(rules.screened_fits, 0)));
-    }
-    ParallelFor(alike_keys.size(), rules.threads, [&](std::size_t k) {
-      const std::size_t i = alike_keys[k];
-      fit_single(i, {{{screenings[i].best_value}, false}});
+    const std::vector<std::size_t> alike_keys = fit_best_screened([&](std::size_t i) {
+      return singles[i].screened_rms <= s.rms_after * 2.0 * rules.equivalent_margin;
     });
     for (const std::size_t i : alike_keys) s.candidates[i] = singles[i];
   }
@@ -424,15 +417,8 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
                         const std::vector<Effect>& library, double noise_floor,
                         const SelectionRules& rules) {
   const Eigen::VectorXd whole_before = cost.Residual(cost.declared());
-  Selection::Part whole = JudgePart(declared, cost, whole_before, rules);
-  // The caller's noise floor (the record's, through this cost's weights) stands.
-  whole.noise_floor = noise_floor;
-  {
-    Selection view;
-    view.noise_floor = noise_floor;
-    view.model_floor = std::max(whole.step_sensitivity, whole.start_sensitivity);
-    whole.limit = AgreementLimit(view, rules);
-  }
+  // The caller's noise floor (the record's, through this cost's weights).
+  const Selection::Part whole = JudgePart(declared, cost, whole_before, noise_floor, rules);
   // The early, deterministic part (CostScope::kEarly): judged on its own, and searched on.
   // Without anything to compare after it (a record that ends at its first impact compares it
   // all anyway), there is no second part.
@@ -446,7 +432,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   Selection::Part early;
   if (early_cost) {
     early_before = early_cost->Residual(cost.declared());
-    early = JudgePart(declared, *early_cost, early_before, rules);
+    early = JudgePart(declared, *early_cost, early_before, early_cost->NoiseFloor(), rules);
   }
   const bool whole_departs = whole.rms_before > whole.limit;
   const bool early_departs = early.compared && early.rms_before > early.limit;
