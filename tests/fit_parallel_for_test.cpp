@@ -35,8 +35,9 @@ TEST(FitParallelFor, AnExceptionInAWorkerReachesTheCaller) {
     } catch (const std::runtime_error& e) {
       EXPECT_EQ(std::string(e.what()), "refused at 17");
     }
-    // The rest stop being started once one has failed (a few may be under way).
-    EXPECT_LT(started.load(), 200) << threads << " threads";
+    // (Whether the others stop early is timing: under TSan one thread ran all 199 others
+    // before the failing one had thrown. Only the exception's arrival is asserted.)
+    EXPECT_GE(started.load(), 18) << threads << " threads";
   }
 }
 
