@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <ostream>
 #include <string>
@@ -60,6 +61,15 @@ Fitted FitTruth(const std::vector<std::string>& effect, const char* rig = kRig,
   std::printf("verdict %s: %s\n", s.verdict.c_str(), s.reason.c_str());
   for (const ParameterEstimate& p : s.chosen_fit.parameters) {
     std::printf("  %s %s = %.6g +- %.2g\n", p.effect.c_str(), p.name.c_str(), p.value, p.sigma);
+  }
+  if (std::getenv("FIT_DEBUG")) {
+    std::printf("judged %s step %g (%s)\n", s.judged_on.c_str(), f.fit->step.step_s,
+                f.fit->step.why.c_str());
+    for (const auto* part : {&s.whole, &s.early, &s.speeds})
+      std::printf("  part before %.4g after %.4g limit %.4g noise %.4g\n", part->rms_before,
+                  part->rms_after, part->limit, part->noise_floor);
+    for (const CandidateScore& c : s.candidates)
+      if (c.tried) std::printf("  %s %.4g\n", c.name.c_str(), c.rms_after);
   }
   return f;
 }
@@ -317,10 +327,21 @@ TEST(FitChannels, DragTorqueFromDisplacementsAndCurrentsAlone) {
   }
   EXPECT_EQ(s.verdict, "explained") << s.reason;
   ASSERT_FALSE(s.chosen.empty()) << s.reason;
-  EXPECT_EQ(s.chosen.front(), "tdb_drag_torque:de");
-  const ParameterEstimate* p = ChosenParameter(*f.fit, "tdb_drag_torque:de", "drag_torque_N_m");
-  ASSERT_NE(p, nullptr);
-  EXPECT_NEAR(p->value, 3.0, 0.3);
+  // The drag is chosen, or listed as a look-alike the record cannot tell from the one chosen
+  // (the DE journal's radius leaves the same residual to 0.1 %: a larger journal sets the race
+  // turning faster, and its friction holds the journal up the side as the drag's does).
+  double drag = std::numeric_limits<double>::quiet_NaN();
+  if (const ParameterEstimate* p =
+          ChosenParameter(*f.fit, "tdb_drag_torque:de", "drag_torque_N_m")) {
+    drag = p->value;
+  }
+  for (const EquivalentEffect& e : s.equivalent) {
+    if (e.name != "tdb_drag_torque:de") continue;
+    for (const ParameterEstimate& p : e.fit.parameters) {
+      if (p.name == "drag_torque_N_m") drag = p.value;
+    }
+  }
+  EXPECT_NEAR(drag, 3.0, 0.3) << "chosen " << s.chosen.front() << ": " << s.reason;
   EXPECT_GE(AboveNoise(s.rms_before, s.noise_floor), 3.0 * AboveNoise(s.rms_after, s.noise_floor));
 }
 
@@ -350,8 +371,18 @@ TEST(FitChannels, DragTorqueBeforeTheSpinUpNeedsTheRaceSpeed) {
   const Fitted seen = FitTruth({"tdb.de.spin.drag_torque_N_m=3"}, kRig, channels, short_record);
   const Selection& t = seen.fit->selection;
   EXPECT_EQ(t.verdict, "explained") << t.reason;
+  // The start agrees; the speeds depart (the slower spin-up) further beyond their limit than
+  // the whole record does, and the verdict judges them (CostScope::kSpeeds).
+  EXPECT_EQ(t.judged_on, "speeds") << t.reason;
+  EXPECT_LE(t.early.rms_before, t.early.limit);
   ASSERT_FALSE(t.chosen.empty()) << t.reason;
   EXPECT_EQ(t.chosen.front(), "tdb_drag_torque:de");
+  // The speeds are nearly noise-free (0.01 rad/s): a second effect fitted on them alone took
+  // their last 0.03 % (a sensor's 2X runout) and the whole record from 0.021 to 0.029. A
+  // candidate that makes another part depart is set aside, and the reason says so.
+  for (const std::string& name : t.chosen) EXPECT_EQ(name.find("sensor_runout"), std::string::npos);
+  EXPECT_LE(t.early.rms_after, t.early.limit) << t.reason;
+  EXPECT_LE(t.whole.rms_after, t.whole.limit_after) << t.reason;
   const ParameterEstimate* p = ChosenParameter(*seen.fit, "tdb_drag_torque:de", "drag_torque_N_m");
   ASSERT_NE(p, nullptr);
   EXPECT_NEAR(p->value, 3.0, 0.3);
@@ -495,6 +526,14 @@ TEST(FitVerdicts, AnEffectOutsideTheCandidatesIsNotClaimedExplained) {
                                     cost.NoiseFloor(), rules);
   EXPECT_TRUE(s.verdict == "unexplained" || s.verdict == "partly_explained")
       << s.verdict << ": " << s.reason;
+  // A partial explanation takes most of the error (SelectionRules::explained_cut); a candidate
+  // that takes less is named as the closest and not applied.
+  if (s.verdict == "partly_explained") {
+    EXPECT_GE(s.rms_before, SelectionRules{}.explained_cut * s.rms_after) << s.reason;
+  } else {
+    EXPECT_TRUE(s.chosen.empty()) << s.reason;
+    EXPECT_EQ(s.rms_after, s.rms_before);
+  }
 }
 
 }  // namespace

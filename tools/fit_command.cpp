@@ -282,6 +282,7 @@ int RunFitCommand(const FitOptions& options) {
   fit_options.rules.threads = options.threads;
   fit_options.rules.max_runs_per_start = options.max_runs_per_start;
   fit_options.rules.tolerance = options.tolerance;
+  fit_options.choose_step = !options.declared_step;
   std::unique_ptr<FitResult> fit;
   try {
     fit = FitRecord(*variants, m, record, fit_options);
@@ -304,6 +305,7 @@ int RunFitCommand(const FitOptions& options) {
   outcome.before = fit->residual_before;
   outcome.after = fit->residual_after;
   outcome.selection = &selection;
+  outcome.step = &fit->step;
   outcome.library = &fit->library;
   outcome.chosen = fit->chosen;
   outcome.wall_time_s =

@@ -14,6 +14,8 @@ struct FitOptions {
   int max_runs_per_start = 40;
   double tolerance = 0.0;  ///< relative RMS within which model and record agree anyway
   bool quiet = false;
+  /// Every run at the config's step (tools/fit/fit_step.hpp: otherwise the fit may coarsen it).
+  bool declared_step = false;
   /// Instead of a record: measured TDB spin-up times ("de=0.11,nde=0.129", s after the
   /// trigger); which single parameter change explains them (tools/fit/spinup_fit.hpp).
   std::string spin_up_times;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <optional>
 
 #include "tools/fit/candidate_screen.hpp"
@@ -100,6 +101,52 @@ double OverallRms(const RecordCost& cost, double sse) {
 
 namespace {
 
+// The effects a fit names, from the library.
+std::vector<const Effect*> EffectsOf(const EffectFit& f, const std::vector<Effect>& library) {
+  std::vector<const Effect*> effects;
+  for (const std::string& name : f.effects) {
+    for (const Effect& e : library) {
+      if (e.name == name) effects.push_back(&e);
+    }
+  }
+  return effects;
+}
+
+// A fitted model's own sensitivity on `cost`: an effect can make the drop chaotic where the
+// declared model was not (a misaligned TDB the rotor now bounces in), and then no parameter
+// value reproduces the bouncing closer than halving the step moves it. The larger of that and
+// how far the prediction moves when a fitted parameter moves by a thousandth of its range, far
+// below what the record resolves: in a smooth drop that is nothing, in a chaotic one the chaos.
+double ModelFloorAfter(const ConfigVariants& declared, const RecordCost& cost,
+                       const std::vector<Effect>& library, const EffectFit& f) {
+  const std::vector<const Effect*> effects = EffectsOf(f, library);
+  const ModelParams fitted = WithEffects(declared, effects, f.values);
+  RecordRunOptions half = cost.run_options();
+  half.step_s = 0.5 * (half.step_s > 0 ? half.step_s : fitted.simulation.step_s);
+  const Eigen::VectorXd at = cost.Residual(fitted);
+  const Eigen::VectorXd fine =
+      cost.Residual(SimulateOnRecord(fitted, cost.measurement(), cost.record(), half));
+  double moved = (fine - at).squaredNorm();
+  double nudged = 0.0;
+  std::size_t count = 0;
+  for (std::size_t e = 0; e < effects.size(); ++e) {
+    for (std::size_t i = 0; i < effects[e]->parameters.size(); ++i) {
+      const EffectParameter& p = effects[e]->parameters[i];
+      if (p.quantum > 0.0) continue;  // steps between whole samples: not a small change
+      std::vector<std::vector<double>> v = f.values;
+      const double range = p.upper - p.lower;
+      const double step = p.periodic    ? 1e-3
+                          : p.magnitude ? 1e-3 * std::max(std::abs(v[e][i]), 1e-3 * range)
+                                        : 1e-3 * range;
+      v[e][i] += v[e][i] + step <= p.upper || p.periodic ? step : -step;
+      nudged += (ResidualWithEffects(declared, cost, effects, v) - at).squaredNorm();
+      ++count;
+    }
+  }
+  if (count > 0) moved = std::max(moved, nudged / static_cast<double>(count));
+  return OverallRms(cost, moved);
+}
+
 // One part's agreement statistics (Selection::Part) for the declared model.
 Selection::Part JudgePart(const ConfigVariants& declared, const RecordCost& cost,
                           const Eigen::VectorXd& residual_before, double noise_floor,
@@ -124,9 +171,12 @@ Selection::Part JudgePart(const ConfigVariants& declared, const RecordCost& cost
 
 // The selection on one cost (the part the verdict judges): `s` comes with that part's numbers
 // (rms_before, noise and model floors, limit); `search` is where starts are searched first.
+// `harm`, if given, says why a fitted candidate makes a part of the record not judged here
+// depart ("" if it does not).
 Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const RecordCost* search,
                    const Eigen::VectorXd& residual_before, const std::vector<Effect>& library,
-                   Selection s, bool at_floor, const SelectionRules& rules) {
+                   Selection s, bool at_floor, const SelectionRules& rules,
+                   const std::function<std::string(const EffectFit&)>& harm) {
   const double sse_before = residual_before.squaredNorm();
   s.bic_before = Bic(sse_before, cost.size(), 0);
   s.rms_after = s.rms_before;
@@ -227,50 +277,38 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
                    [&](std::size_t a, std::size_t b) { return singles[a].bic < singles[b].bic; });
   s.candidates = singles;
 
-  // The limit with a fitted model's own sensitivity: an effect can make the drop chaotic where
-  // the declared model was not (a misaligned TDB the rotor now bounces in), and then no
-  // parameter value reproduces the bouncing closer than halving the step moves it.
+  // The limit with a fitted model's own sensitivity (ModelFloorAfter).
   const auto floor_limit = [&](const EffectFit& f) {
-    std::vector<const Effect*> effects;
-    for (const std::string& name : f.effects) {
-      for (const Effect& e : library) {
-        if (e.name == name) effects.push_back(&e);
-      }
-    }
-    const ModelParams fitted = WithEffects(declared, effects, f.values);
-    RecordRunOptions half = cost.run_options();
-    half.step_s = 0.5 * (half.step_s > 0 ? half.step_s : fitted.simulation.step_s);
-    const Eigen::VectorXd at = cost.Residual(fitted);
-    const Eigen::VectorXd fine =
-        cost.Residual(SimulateOnRecord(fitted, cost.measurement(), cost.record(), half));
-    double moved = (fine - at).squaredNorm();
-    // And how far it moves when a parameter moves by a thousandth of its range, far below what
-    // the record resolves: in a smooth drop that is nothing, in a chaotic one it is the chaos.
-    double nudged = 0.0;
-    std::size_t count = 0;
-    for (std::size_t e = 0; e < effects.size(); ++e) {
-      for (std::size_t i = 0; i < effects[e]->parameters.size(); ++i) {
-        const EffectParameter& p = effects[e]->parameters[i];
-        if (p.quantum > 0.0) continue;  // steps between whole samples: not a small change
-        std::vector<std::vector<double>> v = f.values;
-        const double range = p.upper - p.lower;
-        const double step = p.periodic    ? 1e-3
-                            : p.magnitude ? 1e-3 * std::max(std::abs(v[e][i]), 1e-3 * range)
-                                          : 1e-3 * range;
-        v[e][i] += v[e][i] + step <= p.upper || p.periodic ? step : -step;
-        nudged += (ResidualWithEffects(declared, cost, effects, v) - at).squaredNorm();
-        ++count;
-      }
-    }
-    if (count > 0) moved = std::max(moved, nudged / static_cast<double>(count));
-    s.model_floor_after = OverallRms(cost, moved);
+    s.model_floor_after = ModelFloorAfter(declared, cost, library, f);
     s.limit_after = AgreementLimitAfter(s, rules, &s.limit_after_capped);
     return s.limit_after;
   };
   double limit_after = s.limit;
-  if (!order.empty() && !at_floor) {
+  // Candidates set aside because they make another part of the record depart (`harm`).
+  std::string harmed;
+  const auto harmless = [&](const CandidateScore& c) {
+    const std::string why = harm ? harm(c.fit) : std::string();
+    if (!why.empty()) harmed += fmt::format("; {} was set aside: {}", c.name, why);
+    return why.empty();
+  };
+  // The best by BIC that cuts materially and harms no other part.
+  std::size_t best_at = order.size();
+  if (!at_floor) {
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const CandidateScore& c = s.candidates[order[k]];
+      if (!material(s.rms_before, c.rms_after, c.delta_bic, Parameters(c.fit))) continue;
+      if (harmless(c)) {
+        best_at = k;
+        break;
+      }
+    }
+  }
+  if (best_at < order.size()) {
+    // The chosen one leads the order; partners follow in theirs.
+    std::rotate(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(best_at),
+                order.begin() + static_cast<std::ptrdiff_t>(best_at) + 1);
     CandidateScore& best = s.candidates[order.front()];
-    if (material(s.rms_before, best.rms_after, best.delta_bic, Parameters(best.fit))) {
+    {
       best.accepted = true;
       s.chosen = {best.name};
       s.chosen_fit = best.fit;
@@ -310,13 +348,21 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
         const auto beyond_chaos = [&](double after) {
           return std::sqrt(std::max(0.0, best.rms_after * best.rms_after - after * after)) > chaos;
         };
-        std::size_t pick = pairs.size();
+        std::vector<std::size_t> eligible;
         for (std::size_t p = 0; p < pairs.size(); ++p) {
           if (material(best.rms_after, pairs[p].rms_after, pairs[p].delta_bic,
                        Parameters(pairs[p].fit) - Parameters(best.fit)) &&
-              beyond_chaos(pairs[p].rms_after) &&
-              (pick == pairs.size() || pairs[p].bic < pairs[pick].bic)) {
+              beyond_chaos(pairs[p].rms_after)) {
+            eligible.push_back(p);
+          }
+        }
+        std::stable_sort(eligible.begin(), eligible.end(),
+                         [&](std::size_t a, std::size_t b) { return pairs[a].bic < pairs[b].bic; });
+        std::size_t pick = pairs.size();
+        for (const std::size_t p : eligible) {
+          if (harmless(pairs[p])) {
             pick = p;
+            break;
           }
         }
         if (pick < pairs.size()) {
@@ -401,6 +447,28 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
         "with the chosen effects the residual falls from {:.3g} to {:.3g}, within the agreement "
         "limit {:.3g}{}",
         s.rms_before, s.rms_after, s.rms_after <= s.limit ? s.limit : limit_after, alike);
+  } else if (s.rms_after * rules.explained_cut > s.rms_before) {
+    // What an effect explains must be most of the error (SelectionRules::explained_cut): a
+    // candidate that takes a little off an error it does not describe is no partial
+    // explanation. A constant side pull on the rigid rig, outside every candidate, was cut 2.3x
+    // by both AMBs' constant, and `partly_explained` sent the user to the wrong table.
+    std::string best;
+    for (const std::string& name : s.chosen) best += (best.empty() ? "" : " + ") + name;
+    s.verdict = "unexplained";
+    s.reason = fmt::format(
+        "the residual ({:.3g}, agreement limit {:.3g}) is not described by any effect of the "
+        "library: the closest, {}, cuts it only to {:.3g}, less than {:.0f}x, so most of the error "
+        "is something else{}{}",
+        s.rms_before, limit_after, best, s.rms_after, rules.explained_cut, alike, unseen);
+    s.closest = s.chosen;
+    s.closest_rms = s.rms_after;
+    s.chosen.clear();
+    s.chosen_fit = EffectFit{};
+    s.equivalent.clear();
+    s.rms_after = s.rms_before;
+    s.limit_after = s.limit;
+    s.model_floor_after = 0.0;
+    for (CandidateScore& c : s.candidates) c.accepted = false;
   } else {
     s.verdict = "partly_explained";
     s.reason = fmt::format(
@@ -408,6 +476,7 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
         "limit {:.3g}{}",
         s.rms_before, s.rms_after, limit_after, alike);
   }
+  if (!at_floor) s.reason += harmed;
   return s;
 }
 
@@ -419,66 +488,145 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   const Eigen::VectorXd whole_before = cost.Residual(cost.declared());
   // The caller's noise floor (the record's, through this cost's weights).
   const Selection::Part whole = JudgePart(declared, cost, whole_before, noise_floor, rules);
-  // The early, deterministic part (CostScope::kEarly): judged on its own, and searched on.
-  // Without anything to compare after it (a record that ends at its first impact compares it
-  // all anyway), there is no second part.
-  std::optional<RecordCost> early_cost;
-  if (cost.scope() == CostScope::kWhole && cost.early_end_s() < cost.record().time_s.back()) {
-    early_cost.emplace(cost.declared(), cost.measurement(), cost.record(), cost.run_options(), 3000,
-                       CostScope::kEarly);
-    if (early_cost->size() == 0) early_cost.reset();
-  }
+  // The early, deterministic part (CostScope::kEarly) and the speeds alone (kSpeeds), each
+  // judged on its own. Without anything to compare after the early part (a record that ends at
+  // its first impact compares it all anyway), there is neither.
+  const bool parts =
+      cost.scope() == CostScope::kWhole && cost.early_end_s() < cost.record().time_s.back();
+  const auto part_cost = [&](CostScope scope) {
+    std::optional<RecordCost> c;
+    if (!parts) return c;
+    c.emplace(cost.declared(), cost.measurement(), cost.record(), cost.run_options(), 3000, scope);
+    if (c->size() == 0) c.reset();
+    return c;
+  };
+  const std::optional<RecordCost> early_cost = part_cost(CostScope::kEarly);
+  const std::optional<RecordCost> speeds_cost = part_cost(CostScope::kSpeeds);
+  const auto judge = [&](const std::optional<RecordCost>& c, Eigen::VectorXd* before) {
+    Selection::Part part;
+    if (!c) return part;
+    *before = c->Residual(cost.declared());
+    return JudgePart(declared, *c, *before, c->NoiseFloor(), rules);
+  };
   Eigen::VectorXd early_before;
-  Selection::Part early;
-  if (early_cost) {
-    early_before = early_cost->Residual(cost.declared());
-    early = JudgePart(declared, *early_cost, early_before, early_cost->NoiseFloor(), rules);
-  }
-  const bool whole_departs = whole.rms_before > whole.limit;
-  const bool early_departs = early.compared && early.rms_before > early.limit;
-  const bool at_floor = !whole_departs && !early_departs;
+  Eigen::VectorXd speeds_before;
+  const Selection::Part early = judge(early_cost, &early_before);
+  const Selection::Part speeds = judge(speeds_cost, &speeds_before);
+  const auto departure = [](const Selection::Part& p) {
+    return p.compared ? p.rms_before / std::max(p.limit, 1e-300) : 0.0;
+  };
+  const bool whole_departs = departure(whole) > 1.0;
+  const bool early_departs = departure(early) > 1.0;
+  const bool speeds_depart = departure(speeds) > 1.0;
+  const bool at_floor = !whole_departs && !early_departs && !speeds_depart;
   // Where the start departs, the verdict judges the start: after the first impacts a drop can
   // be chaotic, and the whole cost's spread then hides what the start shows plainly (an offset
   // sensor, a side pull, a fading force: on the independent rig their whole-cost residuals lay
-  // below the clean records', their starts' at 1.5 to 14 times the noise).
-  const bool on_early = early_departs;
-  const Selection::Part& judged_part = on_early ? early : whole;
-  const RecordCost& judged = on_early ? *early_cost : cost;
+  // below the clean records', their starts' at 1.5 to 14 times the noise). Else the speeds,
+  // where they depart further beyond their limit than the whole record does: a race's drag or
+  // inertia shows only once the races spin, where the bouncing's spread (0.03 on the rigid rig,
+  // ten times its noise) keeps any cut of the whole record under 3x.
+  const std::string on = early_departs                                           ? "early"
+                         : speeds_depart && departure(speeds) > departure(whole) ? "speeds"
+                                                                                 : "whole";
+  const Selection::Part& judged_part = on == "early" ? early : on == "speeds" ? speeds : whole;
+  const RecordCost& judged = on == "early" ? *early_cost : on == "speeds" ? *speeds_cost : cost;
+  const Eigen::VectorXd& judged_before = on == "early"    ? early_before
+                                         : on == "speeds" ? speeds_before
+                                                          : whole_before;
   Selection s;
-  s.judged_on = on_early ? "early" : "whole";
+  s.judged_on = on;
   s.rms_before = judged_part.rms_before;
   s.noise_floor = judged_part.noise_floor;
   s.step_sensitivity = judged_part.step_sensitivity;
   s.start_sensitivity = judged_part.start_sensitivity;
   s.model_floor = std::max(s.step_sensitivity, s.start_sensitivity);
   s.limit = judged_part.limit;
-  s = SelectOn(declared, judged, on_early || !early_cost ? nullptr : &*early_cost,
-               on_early ? early_before : whole_before, library, std::move(s), at_floor, rules);
+  // The whole record's fits search their starts on the start first (smooth in the parameters);
+  // the speeds and the start are smooth themselves.
+  struct PartOf {
+    std::string name;
+    const char* phrase;  // where, in a reason
+    const RecordCost* cost;
+    Selection::Part* part;
+  };
   s.whole = whole;
   s.early = early;
-  // The chosen model on both parts; the part not judged must agree too for `explained`.
-  if (!s.chosen.empty()) {
-    std::vector<const Effect*> effects;
-    for (const std::string& name : s.chosen_fit.effects) {
-      for (const Effect& e : library) {
-        if (e.name == name) effects.push_back(&e);
+  s.speeds = speeds;
+  Selection judged_parts = s;  // the declared model's parts, as the harm check reads them
+  const std::vector<PartOf> others = [&] {
+    std::vector<PartOf> all = {
+        {"whole", "over the whole record (after the first impacts too)", &cost,
+         &judged_parts.whole},
+        {"early", "over the drop's start", early_cost ? &*early_cost : nullptr,
+         &judged_parts.early},
+        {"speeds", "on the speeds", speeds_cost ? &*speeds_cost : nullptr, &judged_parts.speeds}};
+    std::vector<PartOf> out;
+    for (const PartOf& p : all) {
+      if (p.name != on && p.cost != nullptr && p.part->compared) out.push_back(p);
+    }
+    return out;
+  }();
+  const auto fitted_run = [&](const EffectFit& f) {
+    return cost.Simulate(WithEffects(declared, EffectsOf(f, library), f.values));
+  };
+  // A candidate fitted on one part must not break another: the speeds alone say nothing of
+  // where the rotor sits, and on a record whose speeds are nearly noise-free a sensor's runout
+  // "explained" their last 0.03 % while taking the drop's start from 0.003 to 0.029. Allowed: the
+  // part's limit or its residual as declared, whichever is larger, widened by twice its model
+  // floor (a chaotic part moves by that under any change).
+  const auto harm = [&](const EffectFit& f) -> std::string {
+    if (others.empty()) return {};
+    const SimulatedRecord sim = fitted_run(f);
+    for (const PartOf& p : others) {
+      const double after = OverallRms(*p.cost, p.cost->Residual(sim).squaredNorm());
+      const double floor = std::max(p.part->step_sensitivity, p.part->start_sensitivity);
+      const double allowed =
+          std::hypot(std::max(p.part->limit, p.part->rms_before), rules.model_floor_factor * floor);
+      if (after > allowed) {
+        return fmt::format("it takes the residual {} from {:.3g} to {:.3g} (allowed {:.3g})",
+                           p.phrase, p.part->rms_before, after, allowed);
       }
     }
-    s.whole.rms_after = OverallRms(
-        cost, ResidualWithEffects(declared, cost, effects, s.chosen_fit.values).squaredNorm());
-    if (early_cost) {
-      s.early.rms_after = OverallRms(
-          *early_cost,
-          ResidualWithEffects(declared, *early_cost, effects, s.chosen_fit.values).squaredNorm());
-    }
-    const Selection::Part& other = on_early ? s.whole : s.early;
-    const double other_limit = other.limit;
-    if (s.verdict == "explained" && other.compared && other.rms_after > other_limit) {
-      s.verdict = "partly_explained";
-      s.reason += fmt::format("; but {} the residual is {:.3g}, beyond {:.3g}",
-                              on_early ? "over the whole record (after the first impacts too)"
-                                       : "over the drop's start",
-                              other.rms_after, other_limit);
+    return {};
+  };
+  s = SelectOn(declared, judged, on == "whole" && early_cost ? &*early_cost : nullptr,
+               judged_before, library, std::move(s), at_floor, rules, harm);
+  s.whole = whole;
+  s.early = early;
+  s.speeds = speeds;
+  // The chosen model on every part; the parts not judged must agree too for `explained`, each
+  // within its limit widened by the chosen model's own floor there (as the judged part's is,
+  // AgreementLimitAfter) where it departed as declared.
+  Selection::Part& judged_now = on == "early" ? s.early : on == "speeds" ? s.speeds : s.whole;
+  judged_now.rms_after = s.rms_after;
+  judged_now.limit_after = s.limit_after;
+  if (!s.chosen.empty()) {
+    const SimulatedRecord sim = fitted_run(s.chosen_fit);
+    bool demoted = false;
+    for (const PartOf& o : others) {
+      Selection::Part* part = o.name == "whole"   ? &s.whole
+                              : o.name == "early" ? &s.early
+                                                  : &s.speeds;
+      part->rms_after = OverallRms(*o.cost, o.cost->Residual(sim).squaredNorm());
+      part->limit_after = part->limit;
+      if (part->rms_after <= part->limit) continue;
+      if (part->rms_before > part->limit) {
+        Selection view;
+        view.noise_floor = part->noise_floor;
+        view.rms_before = part->rms_before;
+        view.model_floor = std::max(part->step_sensitivity, part->start_sensitivity);
+        view.model_floor_after = ModelFloorAfter(declared, *o.cost, library, s.chosen_fit);
+        part->limit_after = AgreementLimitAfter(view, rules);
+        if (part->rms_after <= part->limit_after) continue;
+      }
+      if (s.verdict == "explained") {
+        s.verdict = "partly_explained";
+        demoted = true;
+      }
+      if (!demoted) continue;
+      s.reason += fmt::format("; but {} the residual is {:.3g}, beyond {:.3g}", o.phrase,
+                              part->rms_after, part->limit_after);
     }
   }
   return s;

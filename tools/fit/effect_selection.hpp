@@ -114,13 +114,21 @@ struct Selection {
     double start_sensitivity = 0.0;
     double limit = 0.0;
     double rms_after = 0.0;
+    /// A part not judged, where it departed as declared: its limit widened by the chosen
+    /// model's own floor there (as AgreementLimitAfter widens the judged one's); else `limit`.
+    double limit_after = 0.0;
   };
   Part early;
+  /// The same on the speeds alone (CostScope::kSpeeds: rotor and race speeds from the trigger
+  /// to the end): what spins the races up or slows them shows there, smooth, after the first
+  /// impacts whose bouncing the whole cost carries.
+  Part speeds;
   /// The whole cost's numbers (the top-level ones are the judged part's).
   Part whole;
   /// Which part the verdict judges, and whose numbers the top-level fields hold: "early" where
-  /// the drop's start departs from the declared model beyond its limit, else "whole".
-  /// `explained` needs the other part within its limit too.
+  /// the drop's start departs from the declared model beyond its limit; else "speeds" where the
+  /// speeds depart beyond theirs by a larger factor than the whole record does; else "whole".
+  /// `explained` needs the other parts within their limits too.
   std::string judged_on = "whole";
   /// The limit the verdict on the chosen effects used: the one widened by model_floor_after,
   /// capped by SelectionRules::explained_cut (= limit with nothing chosen).
@@ -136,6 +144,10 @@ struct Selection {
   /// cannot tell them apart, and the verdict says so.
   std::vector<EquivalentEffect> equivalent;
   EffectFit chosen_fit;  ///< their parameters
+  /// With the verdict `unexplained`: the effects that would have been chosen had they cut the
+  /// error by SelectionRules::explained_cut, and the residual they leave (else empty, NaN).
+  std::vector<std::string> closest;
+  double closest_rms = std::numeric_limits<double>::quiet_NaN();
   double rms_after = 0.0;
   std::string verdict;  ///< explained | partly_explained | no_effect_needed | unexplained
   std::string reason;   ///< one sentence: why this verdict

@@ -12,7 +12,17 @@ std::unique_ptr<FitResult> FitRecord(const ConfigVariants& config, const Measure
                                      const FitRecordOptions& options) {
   const ModelParams& declared = config.declared().params;
   auto fit = std::make_unique<FitResult>();
-  const RecordCost cost(declared, m, record, options.run);
+  RecordRunOptions run = options.run;
+  if (!run.rotor_cache) run.rotor_cache = std::make_shared<ReducedRotorCache>();
+  if (options.choose_step) {
+    fit->step = ChooseFitStep(declared, m, record, run);
+  } else {
+    fit->step.declared_s = fit->step.step_s =
+        run.step_s > 0.0 ? run.step_s : declared.simulation.step_s;
+    fit->step.why = "the declared step, as asked";
+  }
+  run.step_s = fit->step.step_s;
+  const RecordCost cost(declared, m, record, run);
   for (const std::size_t c : cost.left_out()) {
     fit->left_out.push_back(
         fmt::format("'{}' ({})", m.channels[c].column, m.channels[c].Describe(declared)));

@@ -7,16 +7,21 @@
 
 #include "tools/fit/effect_selection.hpp"
 #include "tools/fit/fit_report.hpp"
+#include "tools/fit/fit_step.hpp"
 
 namespace ambdrop {
 
 struct FitRecordOptions {
   RecordRunOptions run;
   SelectionRules rules;
+  /// Let the fit run at a coarser step where the record cannot tell (ChooseFitStep); false:
+  /// the config's step (or run.step_s).
+  bool choose_step = true;
 };
 
 struct FitResult {
   std::vector<Effect> library;
+  FitStep step;  ///< the step every run of the fit took, and why
   Selection selection;
   std::vector<const Effect*> chosen;  ///< into library, in selection.chosen order
   /// The chosen effects as `--set` lines, and the declared config read with them.

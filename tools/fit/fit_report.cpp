@@ -92,6 +92,14 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   json.Key("agreement_limit").Number(s.limit);
   json.Key("agreement_limit_after").Number(s.limit_after);
   json.Key("agreement_limit_after_capped").Bool(s.limit_after_capped);
+  if (o.step != nullptr) {
+    json.Key("step").BeginObject(true);
+    json.Key("declared_s").Number(o.step->declared_s);
+    json.Key("fit_s").Number(o.step->step_s);
+    json.Key("move_over_noise").Number(o.step->move_over_noise);
+    json.Key("why").String(o.step->why);
+    json.EndObject();
+  }
   json.Key("windows").BeginObject(true);
   json.Key("start_s").Number(o.before.windows.start_s);
   json.Key("trigger_s").Number(o.before.windows.trigger_s);
@@ -155,7 +163,8 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
 
   // Both parts the verdict looks at; the top-level numbers are the judged one's.
   json.Key("judged_on").String(s.judged_on);
-  for (const auto& [name, part] : {std::pair{"whole", &s.whole}, std::pair{"early", &s.early}}) {
+  for (const auto& [name, part] : {std::pair{"whole", &s.whole}, std::pair{"early", &s.early},
+                                   std::pair{"speeds", &s.speeds}}) {
     if (!part->compared) continue;
     json.Key(name).BeginObject();
     json.Key("rms_before").Number(part->rms_before);
@@ -164,6 +173,17 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     json.Key("step_sensitivity").Number(part->step_sensitivity);
     json.Key("start_sensitivity").Number(part->start_sensitivity);
     json.Key("agreement_limit").Number(part->limit);
+    json.Key("agreement_limit_after")
+        .Number(part->limit_after > 0 ? part->limit_after : part->limit);
+    json.EndObject();
+  }
+  if (!s.closest.empty()) {
+    // An unexplained verdict's nearest miss: not applied, named so the user sees what came close.
+    json.Key("closest").BeginObject();
+    json.Key("effects").BeginArray();
+    for (const std::string& name : s.closest) json.String(name);
+    json.EndArray();
+    json.Key("rms_after").Number(s.closest_rms);
     json.EndObject();
   }
   json.Key("decidable_candidates").Integer(s.decidable_candidates);
@@ -239,13 +259,20 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
   md += fmt::format(
       "Judged on {}: relative RMS residual {:.4g} before, {:.4g} after; the record's noise "
       "alone would leave {:.3g}, so the model error is {:.3g} before and {:.3g} after.\n\n",
-      s.judged_on == "early" ? "the drop's start (every channel up to just after the first "
-                               "impact), where it departs beyond its limit"
-                             : "the whole record",
+      s.judged_on == "early"    ? "the drop's start (every channel up to just after the first "
+                                  "impact), where it departs beyond its limit"
+      : s.judged_on == "speeds" ? "the speeds (rotor and races, from the trigger to the end), "
+                                  "which depart further beyond their limit than the whole record"
+                                : "the whole record",
       s.rms_before, s.rms_after, s.noise_floor, AboveNoise(s.rms_before, s.noise_floor),
       AboveNoise(s.rms_after, s.noise_floor));
+  if (o.step != nullptr) {
+    md += fmt::format("Every run of the fit took a step of {:.3g} s (declared {:.3g} s): {}.\n\n",
+                      o.step->step_s, o.step->declared_s, o.step->why);
+  }
   for (const auto& [name, part] :
-       {std::pair{"The whole record", &s.whole}, std::pair{"The drop's start", &s.early}}) {
+       {std::pair{"The whole record", &s.whole}, std::pair{"The drop's start", &s.early},
+        std::pair{"The speeds", &s.speeds}}) {
     if (!part->compared) continue;
     md += fmt::format(
         "- {}: {:.4g} before, {:.4g} after, agreement limit {:.3g} (noise {:.3g}, step "

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "tools/fit/effect_selection.hpp"
+#include "tools/fit/fit_step.hpp"
 #include "tools/fit/residuals.hpp"
 
 namespace ambdrop {
@@ -16,6 +17,7 @@ struct FitOutcome {
   ResidualReport before;
   ResidualReport after;
   const Selection* selection = nullptr;
+  const FitStep* step = nullptr;  ///< may be null
   const std::vector<Effect>* library = nullptr;
   std::vector<const Effect*> chosen;  ///< in selection->chosen order
   double wall_time_s = 0.0;

@@ -62,6 +62,10 @@ double EarlyEnd(const MeasurementParams& m, const MeasuredRecord& r, double trig
   return first + 5e-3;
 }
 
+bool SpeedLike(MeasuredQuantity q) {
+  return q == MeasuredQuantity::kTdbSpeed || q == MeasuredQuantity::kRotorSpeed;
+}
+
 bool Smooth(MeasuredQuantity q) {
   return q == MeasuredQuantity::kTdbSpeed || q == MeasuredQuantity::kRotorSpeed ||
          q == MeasuredQuantity::kCurrent;
@@ -116,6 +120,7 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
     const std::vector<double>& v = record.values[col];
     column_.push_back(col);
     range_.push_back(0.0);
+    if (scope == CostScope::kSpeeds && !SpeedLike(ch.quantity)) continue;
     // Open loop no controller runs, so nothing predicts its command: not compared.
     if (ch.quantity == MeasuredQuantity::kControllerCommand && !closed) continue;
     const bool current = CurrentLike(ch.quantity);

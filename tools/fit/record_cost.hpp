@@ -33,6 +33,11 @@ enum class CostScope {
   /// cost (a flexible rotor whirling on ball-bearing TDBs): this part stays smooth in the
   /// parameters, so the fit searches on it first.
   kEarly,
+  /// Only the speeds (rotor and races), sample by sample from the trigger to the end. What
+  /// spins the races up or slows them (a drag, a heavier race, a viscous loss) shows there
+  /// after the first impacts, where the whole cost's bouncing hides it: the speeds integrate
+  /// the contact's friction and stay smooth where the displacements are chaotic.
+  kSpeeds,
 };
 
 class RecordCost {
