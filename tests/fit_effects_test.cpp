@@ -443,6 +443,12 @@ TEST(FitVerdicts, EquallyGoodEffectsOfAnotherFamilyAreNamed) {
   EXPECT_NEAR(s.equivalent.front().rms_after, s.rms_after, 1e-3 * s.rms_after);
   EXPECT_NE(s.reason.find("alias:de"), std::string::npos) << s.reason;
   EXPECT_NE(s.reason.find("cannot tell them apart"), std::string::npos) << s.reason;
+  // The same model under another name: no channel of the record separates their predictions
+  // (they differ by far less than any channel's noise), and the reason says which channel
+  // would come closest.
+  EXPECT_FALSE(s.equivalent.front().separating_channel.empty());
+  EXPECT_LT(s.equivalent.front().separation_over_noise, 0.1);
+  EXPECT_NE(s.reason.find("times its noise"), std::string::npos) << s.reason;
 }
 
 TEST(FitVerdicts, FittedPairsAreReportedAsTried) {

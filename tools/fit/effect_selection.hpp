@@ -82,6 +82,12 @@ struct EquivalentEffect {
   std::string family;
   EffectFit fit;           ///< its parameters, as fitted alone
   double rms_after = 0.0;  ///< overall relative RMS with it
+  /// The record's channel where its prediction and the chosen effects' differ most, measured
+  /// in that channel's noise (the RMS difference over the compared samples, divided by the RMS
+  /// its noise alone would leave): what to look at, or to measure, to tell them apart. Below 1
+  /// no channel of this record can.
+  std::string separating_channel;
+  double separation_over_noise = 0.0;
 };
 
 struct Selection {

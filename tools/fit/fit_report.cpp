@@ -150,6 +150,8 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     json.Key("effect").String(e.name);
     json.Key("family").String(e.family);
     json.Key("rms_after").Number(e.rms_after);
+    json.Key("separating_channel").String(e.separating_channel);
+    json.Key("separation_over_noise").Number(e.separation_over_noise);
     json.Key("parameters");
     Parameters(json, e.fit, e.name);
     json.Key("set").BeginArray();
@@ -302,17 +304,29 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
   if (!s.equivalent.empty()) {
     // Side by side with the chosen one: the record does not decide between them.
     md += "## Explanations the record cannot tell apart\n\n";
-    md += "| effect | parameters | overall RMS after |\n|---|---|---|\n";
-    const auto row = [&](const std::string& name, const EffectFit& fit, double rms) {
+    md +=
+        "| effect | parameters | overall RMS after | departs most from the chosen on |\n"
+        "|---|---|---|---|\n";
+    const auto row = [&](const std::string& name, const EffectFit& fit, double rms,
+                         const std::string& apart) {
       std::string params;
       for (const ParameterEstimate& p : fit.parameters) {
         if (p.effect != name) continue;
         params += fmt::format("{}{} = {:.4g}", params.empty() ? "" : ", ", p.name, p.value);
       }
-      md += fmt::format("| {} | {} | {:.4g} |\n", name, params, rms);
+      md += fmt::format("| {} | {} | {:.4g} | {} |\n", name, params, rms, apart);
     };
-    if (!o.chosen.empty()) row(o.chosen.front()->name, s.chosen_fit, s.rms_after);
-    for (const EquivalentEffect& e : s.equivalent) row(e.name, e.fit, e.rms_after);
+    if (!o.chosen.empty()) row(o.chosen.front()->name, s.chosen_fit, s.rms_after, "(chosen)");
+    for (const EquivalentEffect& e : s.equivalent) {
+      row(e.name, e.fit, e.rms_after,
+          e.separating_channel.empty()
+              ? std::string("-")
+              : fmt::format("'{}', {:.2g} times its noise", e.separating_channel,
+                            e.separation_over_noise));
+    }
+    md +=
+        "\nBelow 1 times its noise, no channel of this record tells them apart: another "
+        "channel, or a longer record, would.\n";
     md += "\n";
   }
   if (!o.before.signatures.empty()) {

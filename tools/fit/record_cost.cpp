@@ -229,7 +229,7 @@ double RecordCost::Apply(const Block& b, const std::vector<double>& values) cons
   return sum;
 }
 
-double RecordCost::NoiseFloor() const {
+std::vector<double> RecordCost::ChannelNoiseSse() const {
   // White noise of sigma_c on channel c would leave, in expectation, (sigma_c * weight)^2 per
   // compared sample and (sigma_c * weight)^2 * sum(coefficient^2) per block.
   std::vector<std::vector<double>> rows(column_.size());
@@ -241,13 +241,19 @@ double RecordCost::NoiseFloor() const {
     sigma[c] = rows[c].size() >= 10 ? NoiseSigma(rows[c], 0, rows[c].size())
                                     : NoiseSigma(all, 0, all.size());
   }
-  double expected = 0.0;
-  for (const Sample& s : samples_) expected += std::pow(sigma[s.channel] * s.weight, 2);
+  std::vector<double> expected(column_.size(), 0.0);
+  for (const Sample& s : samples_) expected[s.channel] += std::pow(sigma[s.channel] * s.weight, 2);
   for (const Block& b : blocks_) {
     double sum_sq = 0.0;
     for (const double k : b.coefficients) sum_sq += k * k;
-    expected += std::pow(sigma[b.channel] * b.weight, 2) * sum_sq;
+    expected[b.channel] += std::pow(sigma[b.channel] * b.weight, 2) * sum_sq;
   }
+  return expected;
+}
+
+double RecordCost::NoiseFloor() const {
+  double expected = 0.0;
+  for (const double e : ChannelNoiseSse()) expected += e;
   return std::sqrt(expected / std::max(channels_, 1));
 }
 

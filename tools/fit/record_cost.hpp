@@ -64,6 +64,10 @@ class RecordCost {
   /// The overall relative RMS a perfect model would leave: each channel's measurement noise
   /// (tools/fit/noise_floor.hpp, over its compared samples) through the cost's weights.
   double NoiseFloor() const;
+  /// Its parts per measurement channel: the squared residual each channel's noise alone would
+  /// leave (0 for one not compared). Their sum over channels, divided by channels(), is
+  /// NoiseFloor() squared.
+  std::vector<double> ChannelNoiseSse() const;
 
   std::size_t size() const { return samples_.size() + blocks_.size(); }
   int channels() const { return channels_; }
