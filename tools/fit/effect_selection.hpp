@@ -27,7 +27,9 @@ struct SelectionRules {
   /// within max(the declared limit, rms_before / explained_cut). A fitted effect can make the
   /// drop chaotic and so widen its own limit towards the residual it leaves: without the cap, a
   /// near miss would call itself explained. What an effect explains must be most of the error:
-  /// at least the 3x cut the tests ask of an effect that is in the record.
+  /// at least the 3x cut the tests ask of an effect that is in the record. And a partial
+  /// explanation must close at least 1 - 1/explained_cut of the way from the residual to the
+  /// limit; else the verdict is unexplained and the effect is named as the closest only.
   double explained_cut = 3.0;
   /// A chosen model whose own floor (model_floor_after) exceeds this many declared agreement
   /// limits, and whose widened limit the cap cuts, is at most partly_explained: inside the cap
