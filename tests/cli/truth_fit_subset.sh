@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Issue 15/23 "How it is checked": a subset of the independent records of tools/truth/ (a
-# simulator sharing no code with ambdrop) through `ambdrop fit` with the rig's translated config
-# tests/truth/rigid_rotor_a.toml, each held to the scoring rules of tools/truth/battery.py (one
+# simulator sharing no code with ambdrop) through `ambdrop fit` raw (record.csv in its own units,
+# time in ms, no conversion) with the rig's translated config tests/truth/rigid_rotor_a.toml, each held to the scoring rules of tools/truth/battery.py (one
 # place for them):
 #   - a clean record gives `no_effect_needed` and chooses nothing;
 #   - a worn TDB clearance (physics), a one-axis sensor offset (a sensor effect) and a heavier
@@ -36,7 +36,7 @@ for c in "${cases[@]}"; do
   "$truth_tool" --rig "$rig" --effect "$effect" --seed "$seed" --out "rec_$effect" --si >/dev/null ||
     fail "ambdrop_truth --effect $effect exited $?"
   start=$SECONDS
-  "$tool" fit "$config" --measured "rec_$effect/blind/record_si.csv" --out "fit_$effect" \
+  "$tool" fit "$config" --measured "rec_$effect/blind/record.csv" --out "fit_$effect" \
     >"fit_$effect.txt" 2>&1 || fail "fit of $effect exited $?: $(tail -n 5 "fit_$effect.txt")"
   echo "$((SECONDS - start))" >"fit_$effect/seconds.txt"
 done

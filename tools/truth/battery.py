@@ -7,7 +7,7 @@ exits 0 whatever the score; non-zero only when a fit or the generator fails or a
 
     battery.py AMBDROP AMBDROP_TRUTH RIG.json CONFIG.toml OUT
                [--declared [--count N]] [--jobs N] [--only NAME ...]
-               [--record-file record_si.csv] [--markdown FILE] [--score-only] [--fit-arg ARG ...]
+               [--record-file record.csv] [--markdown FILE] [--score-only] [--fit-arg ARG ...]
 
     AMBDROP, AMBDROP_TRUTH  the two binaries (build/ambdrop, build/tools/truth/ambdrop_truth)
     RIG.json, CONFIG.toml   the generator's rig and its translation into an ambdrop config
@@ -20,8 +20,9 @@ exits 0 whatever the score; non-zero only when a fit or the generator fails or a
     --only NAME             only the records whose effect kind, record name or declared_off
                             entry (`tdbs.de.clearance_m`) is NAME (repeat)
     --record-file F         which file of each blind record goes to `--measured` (default
-                            record_si.csv: SI with a `t` column; record.csv once the config's
-                            [measurement] takes units and a time column)
+                            record.csv, as the generator writes it: time in ms, um, rpm; the
+                            config's [measurement] names its time column and units.
+                            record_si.csv is the same in SI with a `t` column)
     --markdown FILE         the table also as markdown
     --score-only            neither generate nor fit: score the fit.json files already in OUT
     --fit-arg ARG           passed on to `ambdrop fit` (repeat; e.g. --fit-arg=--threads=1)
@@ -530,7 +531,7 @@ def main():
     p.add_argument("--count", type=int, default=12)
     p.add_argument("--jobs", type=int, default=1)
     p.add_argument("--only", action="append", default=[])
-    p.add_argument("--record-file", default="record_si.csv")
+    p.add_argument("--record-file", default="record.csv")
     p.add_argument("--markdown")
     p.add_argument("--score-only", action="store_true")
     p.add_argument("--fit-arg", action="append", default=[])
