@@ -22,7 +22,10 @@ inline constexpr std::uint8_t kAllAmbs = (1u << kMaxAmbs) - 1u;
 struct HilCurrents {
   std::int64_t utime_us = 0;  ///< sender's send time, us since the Unix epoch (informative)
   std::int64_t sequence = 0;  ///< sender's message counter (+1 per message)
-  int amb_count = 0;          ///< AMBs carried, 0..kMaxAmbs; entries beyond are zero
+  /// When the receive thread decoded it: CLOCK_MONOTONIC (std::chrono::steady_clock), ns, as
+  /// the CAN link stamps its frames. Not on the wire; 0 on the sending side.
+  std::int64_t receive_ns = 0;
+  int amb_count = 0;  ///< AMBs carried, 0..kMaxAmbs; entries beyond are zero
   /// Control current (x, y) per AMB, A. AMB i is the i-th [amb.*] table of the rig config.
   std::array<std::array<double, 2>, kMaxAmbs> current_A{};
   bool axial_valid = false;      ///< axial_current_A holds a value

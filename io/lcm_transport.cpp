@@ -8,6 +8,7 @@
 #include <ambdrop_lcm/emulator_state_t.hpp>
 #include <ambdrop_lcm/sensor_readings_t.hpp>
 #include <ambdrop_lcm/trigger_t.hpp>
+#include <chrono>
 #include <climits>
 #include <cmath>
 #include <cstring>
@@ -208,6 +209,10 @@ void LcmEndpoint::HandleCurrents(const void* data, std::size_t size) noexcept {
     return;
   }
   HilCurrents currents;
+  // Stamped as decoded: the record's arrival time of the currents (a run record written 0 here).
+  currents.receive_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                            std::chrono::steady_clock::now().time_since_epoch())
+                            .count();
   currents.utime_us = msg.utime;
   currents.sequence = msg.sequence;
   currents.amb_count = msg.amb_count;

@@ -77,10 +77,20 @@ TEST(LcmControllerLink, LockStepWaitsForTheAnswerToTheLastSample) {
   answer.sequence = 1;
   answer.current_x_A[0] = 0.25;
   answer.current_y_A[1] = -1.5;
+  const auto now_ns = [] {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(
+               std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+  };
+  const std::int64_t before_ns = now_ns();
   ASSERT_EQ(endpoint.lcm().publish(options.currents_channel, &answer), 0);
   EXPECT_TRUE(link.AwaitAnswer(std::chrono::seconds(2)));
+  const std::int64_t after_ns = now_ns();
   CurrentsMessage m;
   ASSERT_TRUE(link.PollCurrents(&m));
+  // Its arrival on the monotonic clock the CAN link stamps with (a record wrote 0 here).
+  EXPECT_GE(m.receive_ns, before_ns);
+  EXPECT_LE(m.receive_ns, after_ns);
   EXPECT_EQ(m.current_A[0][0], 0.25);
   EXPECT_EQ(m.current_A[1][1], -1.5);
   EXPECT_EQ(m.sequence, 1u);

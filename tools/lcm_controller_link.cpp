@@ -11,6 +11,7 @@ bool LcmControllerLink::PollCurrents(CurrentsMessage* out) noexcept {
     any = true;
     out->current_A = c.current_A;
     out->sequence = static_cast<std::uint64_t>(c.sequence);
+    out->receive_ns = c.receive_ns;
   }
   return any;
 }
