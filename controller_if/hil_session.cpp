@@ -83,6 +83,7 @@ void HilSession::PrepareInput(std::int64_t step, double time_s) noexcept {
   for (TriggerSource* trigger : triggers_) {
     while (trigger->Poll(time_s, &event)) {
       power_.Apply(event, step, input_);
+      if (counters_.power_events == 0) counters_.first_power_event_step = step;
       ++counters_.power_events;
       if (recorder_ != nullptr) recorder_->OnPower(RecordedPower{step, event});
     }

@@ -29,6 +29,7 @@ struct HilCounters {
   std::int64_t currents_received = 0;
   std::int64_t sensor_samples_sent = 0;
   std::int64_t power_events = 0;
+  std::int64_t first_power_event_step = -1;  ///< step the first power event applied at; -1: none
   std::int64_t watchdog_hold_periods = 0;
   std::int64_t watchdog_zero_periods = 0;
   std::int64_t observations_dropped = 0;  ///< output ring full

@@ -19,6 +19,7 @@
 #include "io/json_writer.hpp"
 #include "io/timeseries_csv.hpp"
 #include "tools/exit_codes.hpp"
+#include "tools/hil_checks.hpp"
 #include "tools/hil_links.hpp"
 #include "tools/long_run_note.hpp"
 #include "tools/record/run_record_writer.hpp"
@@ -109,6 +110,7 @@ int RunHilCommand(const HilCommandOptions& options) {
   WriteTextFile(out_dir / "effective_config.toml", config.effective_toml);
   TimeseriesCsvWriter csv(out_dir / "timeseries.csv", *model);
   RunSummary summary(model->params);
+  HilChecks checks;
 
   std::unique_ptr<RunRecordWriter> recorder;
   if (!options.record_path.empty()) {
@@ -149,6 +151,7 @@ int RunHilCommand(const HilCommandOptions& options) {
       bool any = false;
       while (outputs->TryPop(&o)) {
         summary.Add(o);
+        checks.Add(o);
         any = true;
         if (!output_error.empty()) continue;
         try {
@@ -255,15 +258,42 @@ int RunHilCommand(const HilCommandOptions& options) {
   // the controller sent, so this is not the run that was asked for. They do not stop it (the
   // watchdog catches a controller that sends nothing usable); the "lcm" block counts each kind.
   const std::uint64_t rejected = links.RejectedControllerMessages();
+  const HilCounters& counters = session.counters();
+  std::optional<double> first_power_event_s;
+  if (counters.first_power_event_step >= 0) {
+    first_power_event_s =
+        static_cast<double>(counters.first_power_event_step) * model->params.simulation.step_s;
+  }
+  const std::string check_failures = checks.Failures(
+      first_power_event_s, counters.currents_received, options.controller != "internal");
   std::string status = StopName(session.stop());
   if (session.stop() == HilStop::kDuration) {
     if (!output_error.empty()) {
       status = "output_error";
     } else if (rejected > 0) {
       status = "controller_messages_rejected";
+    } else if (!check_failures.empty()) {
+      status = "check_failed";
     }
   }
   json.Key("status").String(status);
+  // The checks every HIL run is held to (tools/hil_checks.hpp).
+  json.Key("checks").BeginObject();
+  json.Key("passed").Bool(check_failures.empty());
+  json.Key("failures").String(check_failures);
+  json.Key("first_contact_s");
+  if (checks.first_contact_s()) {
+    json.Number(*checks.first_contact_s());
+  } else {
+    json.Null();
+  }
+  json.Key("first_power_event_s");
+  if (first_power_event_s) {
+    json.Number(*first_power_event_s);
+  } else {
+    json.Null();
+  }
+  json.EndObject();
   json.Key("output_error");
   if (output_error.empty()) {
     json.Null();
@@ -321,8 +351,10 @@ int RunHilCommand(const HilCommandOptions& options) {
                "or beyond its bound): see the \"lcm\" block of {}\n",
                rejected, (out_dir / "summary.json").string());
   }
+  if (!check_failures.empty()) fmt::print(stderr, "error: check failed: {}\n", check_failures);
   if (session.stop() == HilStop::kDiverged) return kExitRunFailed;
-  return output_error.empty() && rejected == 0 ? kExitOk : kExitError;
+  if (!output_error.empty() || rejected > 0) return kExitError;
+  return check_failures.empty() ? kExitOk : kExitExpectationFailed;
 }
 
 }  // namespace ambdrop
