@@ -538,19 +538,16 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
     std::string name;
     const char* phrase;  // where, in a reason
     const RecordCost* cost;
-    Selection::Part* part;
+    const Selection::Part* part;  // the declared model's
   };
-  s.whole = whole;
-  s.early = early;
-  s.speeds = speeds;
-  Selection judged_parts = s;  // the declared model's parts, as the harm check reads them
+  const auto part_of = [](Selection& sel, const std::string& name) -> Selection::Part& {
+    return name == "early" ? sel.early : name == "speeds" ? sel.speeds : sel.whole;
+  };
   const std::vector<PartOf> others = [&] {
     std::vector<PartOf> all = {
-        {"whole", "over the whole record (after the first impacts too)", &cost,
-         &judged_parts.whole},
-        {"early", "over the drop's start", early_cost ? &*early_cost : nullptr,
-         &judged_parts.early},
-        {"speeds", "on the speeds", speeds_cost ? &*speeds_cost : nullptr, &judged_parts.speeds}};
+        {"whole", "over the whole record (after the first impacts too)", &cost, &whole},
+        {"early", "over the drop's start", early_cost ? &*early_cost : nullptr, &early},
+        {"speeds", "on the speeds", speeds_cost ? &*speeds_cost : nullptr, &speeds}};
     std::vector<PartOf> out;
     for (const PartOf& p : all) {
       if (p.name != on && p.cost != nullptr && p.part->compared) out.push_back(p);
@@ -596,16 +593,14 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   // The chosen model on every part; the parts not judged must agree too for `explained`, each
   // within its limit widened by the chosen model's own floor there (as the judged part's is,
   // AgreementLimitAfter) where it departed as declared.
-  Selection::Part& judged_now = on == "early" ? s.early : on == "speeds" ? s.speeds : s.whole;
+  Selection::Part& judged_now = part_of(s, on);
   judged_now.rms_after = s.rms_after;
   judged_now.limit_after = s.limit_after;
   if (!s.chosen.empty()) {
     const SimulatedRecord sim = fitted_run(s.chosen_fit);
     bool demoted = false;
     for (const PartOf& o : others) {
-      Selection::Part* part = o.name == "whole"   ? &s.whole
-                              : o.name == "early" ? &s.early
-                                                  : &s.speeds;
+      Selection::Part* part = &part_of(s, o.name);
       part->rms_after = OverallRms(*o.cost, o.cost->Residual(sim).squaredNorm());
       part->limit_after = part->limit;
       if (part->rms_after <= part->limit) continue;
