@@ -323,10 +323,43 @@ std::optional<double> TimeUnitScale(std::string_view unit) {
 }
 
 namespace config_detail {
+namespace {
+
+// from_record needs coil currents to drive with, and AMBs whose force a coil current sets.
+void CheckFromRecord(const TableReader& table, const ModelParams& params,
+                     const MeasurementParams& m) {
+  bool any = false;
+  for (const MeasurementChannel& ch : m.channels) {
+    if (!m.Drives(ch)) continue;
+    any = true;
+    const AmbParams& a = params.ambs[static_cast<std::size_t>(ch.index)];
+    if (a.law == AmbForceLaw::kEquivalent) {
+      table.Fail("power_loss",
+                 fmt::format("\"declared\" for AMB {}: its law \"equivalent\" takes no coil "
+                             "current (column '{}')",
+                             a.name, ch.column));
+    }
+    if (a.bias_source == AmbBiasSource::kElectromagnet && !a.flux_decay.enabled) {
+      table.Fail("power_loss",
+                 fmt::format("\"declared\", or amb.{0}.flux_decay enabled: with an electromagnet "
+                             "bias the record's control current ('{1}') rides on a bias current "
+                             "that the record does not carry, and without a declared decay that "
+                             "bias (and every force of AMB {0}) is gone at the trigger",
+                             a.name, ch.column));
+    }
+  }
+  if (!any) {
+    table.Fail("power_loss",
+               "\"declared\", or at least one channel with quantity = \"current\" (the coil "
+               "currents that drive the AMBs)");
+  }
+}
+
+}  // namespace
 
 MeasurementParams ReadMeasurement(const TableReader& table, const ModelParams& params) {
-  table.AllowOnly(
-      {"sample_rate_Hz", "trigger_time_s", "trigger", "time_column", "time_unit", "channel"});
+  table.AllowOnly({"sample_rate_Hz", "trigger_time_s", "trigger", "time_column", "time_unit",
+                   "power_loss", "channel"});
   MeasurementParams m;
   // The unit goes in the message unless the shared reader already derives it from the key.
   const bool unit_known = !UnitOfKey("sample_rate_Hz").empty();
@@ -363,6 +396,10 @@ MeasurementParams ReadMeasurement(const TableReader& table, const ModelParams& p
                                    table.KeyPath("channel"), i));
     }
     m.channels.push_back(std::move(channel));
+  }
+  if (table.Choice("power_loss", {"declared", "from_record"}, "declared") == "from_record") {
+    m.power_loss = PowerLossSource::kFromRecord;
+    CheckFromRecord(table, params, m);
   }
   return m;
 }

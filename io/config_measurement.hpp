@@ -7,6 +7,8 @@
 //   trigger_time_s = 0.2            # or: trigger = "detect" (from the coil currents)
 //   time_column = "time_ms"         # default "t"; the record's first column
 //   time_unit = "ms"                # default "s"; or "us"
+//   power_loss = "from_record"      # default "declared": the coil-current channels drive the
+//                                   #   AMBs through and after the trigger (not compared)
 //   [[measurement.channel]]
 //   column = "x_de"                 # header name in the CSV
 //   quantity = "displacement"       # displacement | current | controller_command |
@@ -107,6 +109,12 @@ inline const char* MeasurementAxisName(int axis) {
   return axis == 0 ? "x" : "y";
 }
 
+/// What drives the AMBs' coil currents after the trigger in `ambdrop fit`.
+enum class PowerLossSource {
+  kDeclared,    ///< the declared power-loss law (amb.NAME.flux_decay), from the held current
+  kFromRecord,  ///< the record's coil-current channels, through and after the trigger
+};
+
 struct MeasurementParams {
   double sample_rate_Hz = 0.0;    ///< of the record, checked against its time column in SI
   std::string time_column = "t";  ///< the record's first column
@@ -116,6 +124,15 @@ struct MeasurementParams {
   std::optional<double> trigger_time_s;
   bool detect_trigger = false;
   std::vector<MeasurementChannel> channels;  ///< in the config's order; columns are unique
+  /// `power_loss = "from_record"`: the coil-current channels drive the model from the run's
+  /// start to its end (open loop), so the power-loss law of their axes is not the model's to
+  /// predict and those channels are inputs, never compared. A controller-command channel never
+  /// drives after the trigger (it keeps answering the falling rotor, the coil does not).
+  PowerLossSource power_loss = PowerLossSource::kDeclared;
+  /// Whether channel `ch` is an input (a from_record coil current), not compared.
+  bool Drives(const MeasurementChannel& ch) const {
+    return power_loss == PowerLossSource::kFromRecord && ch.quantity == MeasuredQuantity::kCurrent;
+  }
 };
 
 namespace config_detail {

@@ -80,6 +80,27 @@ inline UnpoweredDrive PowerLossDrive(const AmbParams& a, double held_A, double s
   return {held_A * UniformCurrentFraction(d, seconds, 1.0), 1.0, 1.0};
 }
 
+/// The drive of an unpowered axis whose control current is not modelled but measured
+/// (`measurement.power_loss = "from_record"`): `recorded_A` is the coil's control current at
+/// this instant. A magnet's bias stays, so the force follows the coil current as it does while
+/// powered. An electromagnet's bias current is not in the record (its channel carries the control
+/// current): it falls by the declared law, as PowerLossDrive's bias would, and the recorded control
+/// current rides on it. For the uniform laws the declared bias fraction s and a record that
+/// follows the same law (i = s held) give exactly PowerLossDrive's force: F(s I0, s i) = s^2 F(I0,
+/// i).
+inline UnpoweredDrive RecordedCurrentDrive(const AmbParams& a, double held_A, double recorded_A,
+                                           double seconds) noexcept {
+  const FluxDecayParams& d = a.flux_decay;
+  if (a.law == AmbForceLaw::kEquivalent) return PowerLossDrive(a, held_A, seconds);
+  if (a.bias_source == AmbBiasSource::kPermanentMagnet) return {recorded_A, 1.0, 1.0};
+  // Without a declared decay the bias vanishes at once, and with it the force.
+  if (!d.enabled) return {recorded_A, 0.0, 0.0};
+  if (d.current_law == PowerLossCurrentLaw::kSlewLimitedRamp) {
+    return {recorded_A, 1.0, PowerLossDrive(a, held_A, seconds).bias_scale};
+  }
+  return {recorded_A, 1.0, UniformCurrentFraction(d, seconds, 1.0)};
+}
+
 /// The control current the coil carries (what records and measured-like channels report): the
 /// drive's current times the square root of the force scale, the uniform laws' current fraction.
 inline double ReportedCoilCurrent(const UnpoweredDrive& u) noexcept {

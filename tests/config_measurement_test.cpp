@@ -168,6 +168,32 @@ TEST(ConfigMeasurement, OverridesReachTheTable) {
                         "expected a positive number (Hz), found 0"));
 }
 
+TEST(ConfigMeasurement, FromRecordDrivesWithCoilCurrentsOnly) {
+  const std::string text =
+      Valid("trigger_time_s = 0.2", "trigger_time_s = 0.2\npower_loss = \"from_record\"");
+  const LoadedConfig magnet =
+      LoadConfigFromString(text, kSource, {"amb.de.bias_source=permanent_magnet"});
+  ASSERT_TRUE(magnet.measurement);
+  EXPECT_EQ(magnet.measurement->power_loss, PowerLossSource::kFromRecord);
+  for (const MeasurementChannel& ch : magnet.measurement->channels) {
+    EXPECT_EQ(magnet.measurement->Drives(ch), ch.quantity == MeasuredQuantity::kCurrent)
+        << ch.column;
+  }
+  const LoadedConfig decaying =
+      LoadConfigFromString(text, kSource, {"amb.de.flux_decay.enabled=true"});
+  EXPECT_EQ(decaying.measurement->power_loss, PowerLossSource::kFromRecord);
+  // A controller's command keeps answering the falling rotor: it never drives after the cut.
+  std::string commands = text;
+  commands.replace(commands.find("quantity = \"current\""), 20,
+                   "quantity = \"controller_command\"");
+  EXPECT_THAT(ErrorOf(commands), HasSubstr("at least one channel with quantity = \"current\""));
+  // The seed rig's AMBs are of the equivalent law: stiffness and damping, no coil current.
+  std::string equivalent = text;
+  equivalent.replace(0, Rig().size(),
+                     "base = \"" + testing::ConfigPath("jarroux2019_industrial.toml") + "\"\n");
+  EXPECT_THAT(ErrorOf(equivalent), HasSubstr("its law \"equivalent\" takes no coil current"));
+}
+
 struct RuleCase {
   std::string name;
   std::string toml;
@@ -202,7 +228,8 @@ std::vector<RuleCase> TableCases() {
        "expected a table ([measurement])", "3"},
       {"UnknownKey", Valid("trigger_time_s = 0.2", "trigger_time_s = 0.2\nrate_Hz = 1"),
        "rate_Hz = 1", "measurement.rate_Hz",
-       "(allowed here: sample_rate_Hz, trigger_time_s, trigger, time_column, time_unit, channel)"},
+       "(allowed here: sample_rate_Hz, trigger_time_s, trigger, time_column, time_unit, "
+       "power_loss, channel)"},
       {"SampleRateMissing", Valid("sample_rate_Hz = 20000.0\n", ""), "[measurement]",
        "measurement.sample_rate_Hz",
        "missing key 'measurement.sample_rate_Hz': expected a "
@@ -227,6 +254,15 @@ std::vector<RuleCase> TableCases() {
        Rig() + "[measurement]\nsample_rate_Hz = 1e3\ntrigger_time_s = 0.1\nchannel = []\n",
        "channel = []", "measurement.channel", "expected at least one [[measurement.channel]]",
        "[]"},
+      {"PowerLossUnknown", Valid("trigger_time_s = 0.2", "trigger_time_s = 0.2\npower_loss = 1"),
+       "power_loss", "measurement.power_loss", "expected one of \"declared\", \"from_record\"",
+       "1"},
+      // The PID rig's electromagnet bias, without a declared decay.
+      {"FromRecordNeedsTheBiasLaw",
+       Valid("trigger_time_s = 0.2", "trigger_time_s = 0.2\npower_loss = \"from_record\""),
+       "power_loss", "measurement.power_loss",
+       "or amb.de.flux_decay enabled: with an electromagnet bias the record's control current "
+       "('i_de_y') rides on a bias current that the record does not carry"},
       {"ChannelNotTables",
        Rig() + "[measurement]\nsample_rate_Hz = 1e3\ntrigger_time_s = 0.1\nchannel = 3\n",
        "channel = 3", "measurement.channel", "expected an array of tables", "3"},

@@ -124,6 +124,7 @@ std::vector<FeatureComparison> CompareFeatures(const ModelParams& params,
   const double spin = params.simulation.spin_speed_rad_s;
   for (std::size_t c = 0; c < m.channels.size(); ++c) {
     const MeasurementChannel& ch = m.channels[c];
+    if (m.Drives(ch)) continue;  // an input (from_record), never a residual
     const std::vector<double>& meas = r.values[r.Column(ch.column)];
     const std::vector<double>& sim = model.values[c];
     switch (ch.quantity) {
@@ -190,6 +191,7 @@ std::vector<Signature> ResidualSignatures(const ModelParams& params, const Measu
   const std::size_t settled = RowAt(r, SettledFrom(r, trigger));
   for (std::size_t c = 0; c < m.channels.size(); ++c) {
     const MeasurementChannel& ch = m.channels[c];
+    if (m.Drives(ch)) continue;  // an input (from_record), never a residual
     const std::vector<double>& meas = r.values[r.Column(ch.column)];
     const std::vector<double>& sim = model.values[c];
     std::vector<double> e(meas.size(), kNaN);

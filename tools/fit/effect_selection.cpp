@@ -65,9 +65,29 @@ double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
       variants.push_back(std::move(o));
     }
   }
-  std::vector<double> moved(variants.size(), 0.0);
-  ParallelFor(variants.size(), threads, [&](std::size_t i) {
-    const Eigen::VectorXd r_i = cost.Residual(declared.With(variants[i]).params);
+  // Open loop the start state is fitted to a quadratic through each displacement channel near
+  // the start: the noise leaves its value and slope uncertain (OpenLoopStartUncertainty). On a
+  // plant that the held currents leave unstable that slope decides where the rotor drifts.
+  std::vector<RecordRunOptions> starts;
+  if (!ClosedLoop(params, m, cost.run_options())) {
+    const double sigma = 3.0 * amplitude;  // the channels' median noise
+    const auto [value_per_sigma, slope_per_sigma] =
+        OpenLoopStartUncertainty(r, cost.compare_from_s());
+    for (const double sign : {1.0, -1.0}) {
+      RecordRunOptions o = cost.run_options();
+      o.start_position_shift_m = sign * sigma * value_per_sigma;
+      starts.push_back(o);
+      o.start_position_shift_m = 0.0;
+      o.start_velocity_shift_m_s = sign * sigma * slope_per_sigma;
+      starts.push_back(o);
+    }
+  }
+  std::vector<double> moved(variants.size() + starts.size(), 0.0);
+  ParallelFor(moved.size(), threads, [&](std::size_t i) {
+    const Eigen::VectorXd r_i =
+        i < variants.size()
+            ? cost.Residual(declared.With(variants[i]).params)
+            : cost.Residual(SimulateOnRecord(params, m, r, starts[i - variants.size()]));
     moved[i] = OverallRms(cost, (r_i - residual_before).squaredNorm());
   });
   return *std::max_element(moved.begin(), moved.end());

@@ -1,6 +1,7 @@
 #include "tools/fit/fit_report.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -71,6 +72,34 @@ void Parameters(JsonWriter& json, const EffectFit& fit, const std::string& effec
   json.EndObject();
 }
 
+// Which mode drove the AMBs after the trigger, and what it leaves undecidable.
+std::string FromRecordNote(const ModelParams& params, const MeasurementParams& m) {
+  if (m.power_loss != PowerLossSource::kFromRecord) return {};
+  std::string columns;
+  std::vector<std::string> magnets;
+  for (const MeasurementChannel& ch : m.channels) {
+    if (!m.Drives(ch)) continue;
+    columns += (columns.empty() ? "" : ", ") + ch.column;
+    const AmbParams& a = params.ambs[static_cast<std::size_t>(ch.index)];
+    if (a.bias_source == AmbBiasSource::kPermanentMagnet &&
+        std::find(magnets.begin(), magnets.end(), a.name) == magnets.end()) {
+      magnets.push_back(a.name);
+    }
+  }
+  std::string md = fmt::format(
+      "Power loss: **from_record**. The record's coil currents ({}) drove their AMB axes through "
+      "and after the trigger and are not compared; ",
+      columns);
+  md += magnets.empty()
+            ? "the electromagnet bias under them fell by the declared law, so its keys stay "
+              "candidates.\n\n"
+            : fmt::format(
+                  "the power-loss keys of magnet-biased AMB(s) {} cannot be decided from "
+                  "this record (their force follows the recorded current).\n\n",
+                  fmt::join(magnets, ", "));
+  return md;
+}
+
 }  // namespace
 
 std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementParams& m) {
@@ -84,6 +113,13 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   json.Key("measured").String(o.measured_path);
   json.Key("verdict").String(s.verdict);
   json.Key("reason").String(s.reason);
+  json.Key("power_loss")
+      .String(m.power_loss == PowerLossSource::kFromRecord ? "from_record" : "declared");
+  json.Key("driving_channels").BeginArray();
+  for (const MeasurementChannel& ch : m.channels) {
+    if (m.Drives(ch)) json.String(ch.column);
+  }
+  json.EndArray();
   json.Key("noise_floor").Number(s.noise_floor);
   json.Key("model_floor").Number(s.model_floor);
   json.Key("step_sensitivity").Number(s.step_sensitivity);
@@ -268,6 +304,7 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
                                 : "the whole record",
       s.rms_before, s.rms_after, s.noise_floor, AboveNoise(s.rms_before, s.noise_floor),
       AboveNoise(s.rms_after, s.noise_floor));
+  md += FromRecordNote(params, m);
   if (o.step != nullptr) {
     md += fmt::format("Every run of the fit took a step of {:.3g} s (declared {:.3g} s): {}.\n\n",
                       o.step->step_s, o.step->declared_s, o.step->why);

@@ -292,6 +292,7 @@ std::string MeasurementTableToml(const ModelParams& truth, const MeasurementPara
   } else {
     out += "trigger = \"detect\"\n";
   }
+  if (m.power_loss == PowerLossSource::kFromRecord) out += "power_loss = \"from_record\"\n";
   for (const MeasurementChannel& c : m.channels) {
     out += "\n[[measurement.channel]]\n";
     out += "column = " + TomlString(c.column) + "\n";

@@ -97,7 +97,7 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
     : declared_(declared), measurement_(measurement), record_(record), run_(run), scope_(scope) {
   trigger_s_ = RecordTriggerTime(measurement, record);
   if (!run_.rotor_cache) run_.rotor_cache = std::make_shared<ReducedRotorCache>();
-  const bool closed = ClosedLoop(declared, run);
+  const bool closed = ClosedLoop(declared, measurement, run);
   const double t0 = record.time_s.front();
   const double t_end = record.time_s.back();
   compare_from_s_ = closed ? t0 : std::max(t0, trigger_s_ - run.lead_s);
@@ -123,6 +123,8 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
     if (scope == CostScope::kSpeeds && !SpeedLike(ch.quantity)) continue;
     // Open loop no controller runs, so nothing predicts its command: not compared.
     if (ch.quantity == MeasuredQuantity::kControllerCommand && !closed) continue;
+    // power_loss = "from_record": the coil currents drive the model; they are its input.
+    if (measurement.Drives(ch)) continue;
     const bool current = CurrentLike(ch.quantity);
     // Sample-by-sample rows; currents before the trigger are inputs (open loop) or compared
     // by their levitated mean and harmonics (closed loop).

@@ -40,6 +40,8 @@ std::vector<double> ResidualSeries(const MeasurementParams& m, const MeasuredRec
   std::vector<double> e(r.time_s.size(), kNaN);
   const bool current = ch.quantity == MeasuredQuantity::kCurrent ||
                        ch.quantity == MeasuredQuantity::kControllerCommand;
+  // from_record's coil currents are the model's input, never a residual.
+  if (m.Drives(ch)) return e;
   for (std::size_t j = sim.first_row; j < sim.first_row + sim.rows; ++j) {
     if (!sim.closed_loop && current && r.time_s[j] < sim.trigger_time_s) continue;
     if (!ch.InWindow(r.time_s[j], sim.trigger_time_s)) continue;

@@ -16,6 +16,7 @@
 #include "controller_if/state_dump.hpp"
 #include "rt_core/amb_force.hpp"
 #include "rt_core/model.hpp"
+#include "rt_core/power_loss_drive.hpp"
 #include "tools/fit/held_current.hpp"
 
 namespace ambdrop {
@@ -36,23 +37,36 @@ double ValueAt(const MeasuredRecord& r, int c, double t) {
 }
 
 // Least-squares slope and value at t0 of column c over the samples within +-half of t0.
-std::pair<double, double> LocalLine(const MeasuredRecord& r, int c, double t0, double half) {
-  double n = 0, st = 0, sv = 0, stt = 0, stv = 0;
-  for (std::size_t j = 0; j < r.time_s.size(); ++j) {
-    const double dt = r.time_s[j] - t0;
-    if (std::abs(dt) > half) continue;
-    const double v = r.values[c][j];
-    n += 1;
-    st += dt;
-    sv += v;
-    stt += dt * dt;
-    stv += dt * v;
+// The rows within `half` of t0, and their normal matrix for value, slope and curvature.
+struct LocalRows {
+  std::vector<std::size_t> rows;
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+};
+LocalRows RowsNear(const MeasuredRecord& r, double t0, double half) {
+  LocalRows out;
+  const auto first = std::lower_bound(r.time_s.begin(), r.time_s.end(), t0 - half);
+  for (auto it = first; it != r.time_s.end() && *it <= t0 + half; ++it) {
+    const double dt = *it - t0;
+    const Eigen::Vector3d b(1.0, dt, dt * dt);
+    out.rows.push_back(static_cast<std::size_t>(it - r.time_s.begin()));
+    out.normal += b * b.transpose();
   }
-  if (n < 2) return {ValueAt(r, c, t0), 0.0};
-  const double det = n * stt - st * st;
-  if (det <= 0) return {sv / n, 0.0};
-  const double slope = (n * stv - st * sv) / det;
-  return {(sv - slope * st) / n, slope};
+  return out;
+}
+
+// Value and slope at t0 of a least-squares quadratic through the samples within `half` of it:
+// the quadratic lets the window span a millisecond or two of the levitated jitter, and the
+// longer window pins the slope far better than a short line can.
+std::pair<double, double> LocalFit(const MeasuredRecord& r, int c, double t0, double half) {
+  const LocalRows near = RowsNear(r, t0, half);
+  if (near.rows.size() < 3) return {ValueAt(r, c, t0), 0.0};
+  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+  for (const std::size_t j : near.rows) {
+    const double dt = r.time_s[j] - t0;
+    rhs += r.values[c][j] * Eigen::Vector3d(1.0, dt, dt * dt);
+  }
+  const Eigen::Vector3d p = near.normal.ldlt().solve(rhs);
+  return {p(0), p(1)};
 }
 
 }  // namespace
@@ -105,8 +119,21 @@ double RecordTriggerTime(const MeasurementParams& m, const MeasuredRecord& r) {
   return best;
 }
 
-bool ClosedLoop(const ModelParams& params, const RecordRunOptions& options) {
+double OpenLoopStartHalfWindow(const MeasuredRecord& record) {
+  return std::max(4.0 * record.SampleInterval(), 1e-3);
+}
+
+std::pair<double, double> OpenLoopStartUncertainty(const MeasuredRecord& record, double t_start) {
+  const LocalRows near = RowsNear(record, t_start, OpenLoopStartHalfWindow(record));
+  if (near.rows.size() < 3) return {1.0, 1.0 / record.SampleInterval()};
+  const Eigen::Matrix3d cov = near.normal.inverse();
+  return {std::sqrt(cov(0, 0)), std::sqrt(cov(1, 1))};
+}
+
+bool ClosedLoop(const ModelParams& params, const MeasurementParams& measurement,
+                const RecordRunOptions& options) {
   if (options.pre_trigger != PreTrigger::kAuto) return false;
+  if (measurement.power_loss == PowerLossSource::kFromRecord) return false;
   if (params.controller.kind == ControllerKind::kInternalPid) return true;
   // AMBs with the equivalent law hold the rotor by their stiffness and damping, as a controller
   // would: the rig levitates by itself and needs no measured currents.
@@ -119,7 +146,7 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
                                  const MeasuredRecord& r, const RecordRunOptions& options) {
   SimulatedRecord out;
   out.trigger_time_s = RecordTriggerTime(m, r);
-  out.closed_loop = ClosedLoop(declared, options);
+  out.closed_loop = ClosedLoop(declared, m, options);
   const bool closed = out.closed_loop;
   // Closed loop, the rig runs from time 0 as `ambdrop sim` runs it; open loop, from just before
   // the trigger.
@@ -175,6 +202,13 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
       current_column[ch.index][ch.axis] = r.Column(ch.column);
       current_channel[ch.index][ch.axis] = &ch;
     }
+  }
+  // from_record: the axes whose coil current the record gives go on following it after the
+  // trigger (never a command's: it answers the falling rotor, the coil does not).
+  std::array<std::array<int, 2>, kMaxAmbs> driven_column;
+  for (auto& a : driven_column) a = {-1, -1};
+  for (const MeasurementChannel& ch : m.channels) {
+    if (m.Drives(ch)) driven_column[ch.index][ch.axis] = r.Column(ch.column);
   }
   // What each measured axis held when the power failed. The coil current's samples just after
   // the trigger say it (the decay starts from it), if its window keeps them; a command goes on
@@ -259,14 +293,14 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
     // The modal coordinates that best explain the displacement channels around the start.
     std::vector<Eigen::RowVectorXd> rows_q;
     std::vector<double> pos, vel;
-    const double half_window = std::max(4.0 * r.SampleInterval(), 0.25e-3);
+    const double half_window = OpenLoopStartHalfWindow(r);
     for (const MeasurementChannel& ch : m.channels) {
       if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
       const SensorParams& s = model.params.sensors[ch.index];
-      const auto [value, slope] = LocalLine(r, r.Column(ch.column), t_start, half_window);
+      const auto [value, slope] = LocalFit(r, r.Column(ch.column), t_start, half_window);
       rows_q.push_back(model.sensor_shapes[ch.index].row(ch.axis) * s.AxisGain(ch.axis));
-      pos.push_back(value - s.AxisOffset_m(ch.axis));
-      vel.push_back(slope);
+      pos.push_back(value + options.start_position_shift_m - s.AxisOffset_m(ch.axis));
+      vel.push_back(slope + options.start_velocity_shift_m_s);
     }
     if (!rows_q.empty()) {
       Eigen::MatrixXd a(static_cast<Eigen::Index>(rows_q.size()), n);
@@ -357,6 +391,25 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
     if (!controlled) keep_command();
     if (controlled && k % substeps == 0) keep_command();
     power.Fill(k, &input);
+    if (k >= model.trigger_step) {
+      const double seconds = static_cast<double>(k - model.trigger_step) * dt;
+      for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+        for (int axis = 0; axis < 2; ++axis) {
+          const int c = driven_column[a][axis];
+          if (c < 0) continue;
+          const double recorded_A = ValueAt(r, c, t_record);
+          if (power.powered(static_cast<int>(a), axis)) {
+            input.amb[a].current_A[axis] = recorded_A;
+            continue;
+          }
+          const UnpoweredDrive d =
+              RecordedCurrentDrive(model.params.ambs[a], held_A[a][axis], recorded_A, seconds);
+          input.amb[a].current_A[axis] = d.current_A;
+          input.amb[a].force_scale[axis] = d.force_scale;
+          input.amb[a].bias_scale[axis] = d.bias_scale;
+        }
+      }
+    }
     // Rows on this step (the nearest step to their time) are predicted from this state, with
     // the currents applied over this step.
     while (row < total_rows && r.time_s[row] < t_record + 0.5 * dt) {

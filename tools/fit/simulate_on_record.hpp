@@ -6,6 +6,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/config_measurement.hpp"
@@ -36,7 +37,19 @@ struct RecordRunOptions {
   /// Shared by the runs of one fit (copies of these options share it): the rig's rotor is
   /// reduced once. Null: each run reduces it.
   std::shared_ptr<ReducedRotorCache> rotor_cache;
+  /// Open loop: added to every displacement channel's value and slope at the start before the
+  /// initial state is fitted to them; the start sensitivity's probes of how closely the record's
+  /// noise pins that state (tools/fit/effect_selection.cpp).
+  double start_position_shift_m = 0.0;
+  double start_velocity_shift_m_s = 0.0;
 };
+
+/// Open loop: the initial state is fitted to a quadratic through each displacement channel's
+/// samples within this many seconds of the start.
+double OpenLoopStartHalfWindow(const MeasuredRecord& record);
+/// The standard errors of that fit's value and slope at `t_start` per unit of the samples'
+/// noise (m and m/s per m of noise): how closely a record pins the open-loop start.
+std::pair<double, double> OpenLoopStartUncertainty(const MeasuredRecord& record, double t_start);
 
 /// What the model says each measured channel should read.
 struct SimulatedRecord {
@@ -55,8 +68,10 @@ struct SimulatedRecord {
 double RecordTriggerTime(const MeasurementParams& measurement, const MeasuredRecord& record);
 
 /// Whether the run is closed loop (the declared controller levitates the rotor until the
-/// trigger) for these params and options.
-bool ClosedLoop(const ModelParams& params, const RecordRunOptions& options);
+/// trigger) for these params, options and measurement: never with power_loss = "from_record",
+/// whose currents drive the model from the run's start.
+bool ClosedLoop(const ModelParams& params, const MeasurementParams& measurement,
+                const RecordRunOptions& options);
 
 /// Closed loop: the declared rig and controller run from time 0, as `ambdrop sim` would, with
 /// the power failing at the record's trigger, sampled at the record's times (each row takes
@@ -68,6 +83,9 @@ bool ClosedLoop(const ModelParams& params, const RecordRunOptions& options);
 /// modal coordinates to the displacement channels around the start (through the sensors' gain
 /// and offset), the spin speed is the rotor_speed channel's (or the config's), and the spin
 /// angle is the config's speed times the start time (a rig spinning steadily from time 0).
+/// With power_loss = "from_record" the coil-current channels go on driving their axes after the
+/// trigger (rt_core/power_loss_drive.hpp, RecordedCurrentDrive) and their predicted values are
+/// the record's own (inputs, not compared).
 /// Predicted readings come through the declared sensor model without noise or quantisation.
 SimulatedRecord SimulateOnRecord(const ModelParams& params, const MeasurementParams& measurement,
                                  const MeasuredRecord& record, const RecordRunOptions& options);
