@@ -11,6 +11,7 @@
 #include "controller_if/pid_controller.hpp"
 #include "controller_if/power_state.hpp"
 #include "controller_if/sensor_emulator.hpp"
+#include "controller_if/settled_start.hpp"
 #include "controller_if/state_dump.hpp"
 #include "rt_core/amb_force.hpp"
 #include "rt_core/power_loss_drive.hpp"
@@ -65,6 +66,22 @@ OfflineRunResult RunOfflineWithCurrents(const Model& model, const OfflineOutput&
   } else {
     input = ProfileStartInput(model);
   }
+  OfflineRunResult result;
+  // The opt-in settled start: the closed loop runs before t = 0 (controller_if/settled_start.hpp).
+  std::optional<State> settled;
+  if (internal && model.params.simulation.settle_s > 0.0) {
+    State s = sim.InitialState(StaticLoadInput(model));
+    const SettleResult r = SettleClosedLoop(model, sim, &s, &*controller, &sensors, &input);
+    result.settle_steps = r.steps;
+    result.settle_last_change_m = r.last_change_m;
+    if (r.status != StepStatus::kOk) {
+      result.status = r.status;
+      result.failure_message = r.failure;
+      result.final_state = s;
+      return result;
+    }
+    settled = s;
+  }
   PowerState power(model);
   const PowerEvent failure = ScheduledFailure(model);
   const PowerEvent restore = ScheduledRestore(model);
@@ -82,10 +99,9 @@ OfflineRunResult RunOfflineWithCurrents(const Model& model, const OfflineOutput&
   if (model.trigger_step == 0) apply_power(failure, 0);
   power.Fill(0, &input);
 
-  OfflineRunResult result;
   // A controller-driven rotor starts levitated on the currents that carry its static load.
   start.equilibrium_input = internal ? StaticLoadInput(model) : input;
-  State state = sim.InitialState(start.equilibrium_input);
+  State state = settled ? *settled : sim.InitialState(start.equilibrium_input);
   if (recorder != nullptr) recorder->OnStart(start);
   // The currents last recorded: a profile's are recorded only when they change.
   std::array<std::array<double, 2>, kMaxAmbs> recorded_A = start.loop_current_A;

@@ -14,6 +14,10 @@ struct OfflineRunResult {
   std::int64_t steps = 0;
   State final_state;
   std::string failure_message;  ///< with a state dump when status != kOk
+  /// The settled start (simulation.settle_s): steps run before t = 0, and the largest change of
+  /// the rotor at a sensor plane over its last revolution (SettleResult). 0 without one.
+  std::int64_t settle_steps = 0;
+  double settle_last_change_m = 0.0;
 };
 
 /// Called at every output row with the state's observation and the AMB currents applied from

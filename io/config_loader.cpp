@@ -53,6 +53,13 @@ ModelParams ReadModel(const TableReader& root) {
           : config_detail::SensorSampling{1.0 / params.controller.rate_Hz,
                                           "the controller period (1/controller.rate_Hz)"};
   params.sensors = config_detail::ReadSensors(root, position, sampling);
+  if (params.simulation.settle_s > 0.0 && params.controller.kind != ControllerKind::kInternalPid) {
+    root.OptionalTable("simulation")
+        ->Fail("settle_s",
+               "0 unless [controller] kind is \"internal_pid\" or \"internal_linear\": only the "
+               "in-process controller's "
+               "own loop can be settled before the run");
+  }
   params.tdbs = config_detail::ReadTdbs(root, position);
   params.unbalances = config_detail::ReadUnbalances(root, position);
   return params;

@@ -15,7 +15,7 @@ SimulationParams ReadSimulation(const TableReader& root) {
   const auto table = root.OptionalTable("simulation");
   if (!table) return params;
   table->AllowOnly({"step_s", "duration_s", "output_interval_s", "spin_speed_rad_s",
-                    "initial_position", "max_excursion_over_clearance", "max_steps"});
+                    "initial_position", "settle_s", "max_excursion_over_clearance", "max_steps"});
   params.step_s = table->Number("step_s", Positive(), params.step_s);
   params.max_steps = table->Integer64("max_steps", 1, kMaxStepsCeiling, params.max_steps);
   // The steps are counted in int64 (llround of duration / step): beyond max_steps a run would
@@ -49,6 +49,14 @@ SimulationParams ReadSimulation(const TableReader& root) {
       table->Choice("initial_position", {"equilibrium", "centred"}, "equilibrium");
   params.initial_position =
       initial == "centred" ? InitialPosition::kCentred : InitialPosition::kEquilibrium;
+  params.settle_s = table->Number(
+      "settle_s",
+      NumberRule{.lower = 0.0,
+                 .upper = longest_s,
+                 .what = fmt::format("a number in [0, simulation.max_steps * simulation.step_s] "
+                                     "= [0, {:.6g}] (s)",
+                                     longest_s)},
+      params.settle_s);
   params.max_excursion_over_clearance = table->Number("max_excursion_over_clearance", Positive(),
                                                       params.max_excursion_over_clearance);
   return params;

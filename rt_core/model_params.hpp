@@ -119,6 +119,11 @@ struct SimulationParams {
   double output_interval_s = 5e-5;
   double spin_speed_rad_s = 0.0;  ///< held by the motor until the trigger
   InitialPosition initial_position = InitialPosition::kEquilibrium;
+  /// Opt-in settled start (s): the in-process closed loop runs this long, powered and without
+  /// trigger or output, before the run's t = 0, so that its filters, integrators and the
+  /// rotor's synchronous orbit start steady (controller_if/settled_start.hpp). 0: the run
+  /// starts at the levitated equilibrium (rt_core/levitated_start.hpp).
+  double settle_s = 0.0;
   /// Divergence guard: the run stops when a journal leaves its TDB by more than this many
   /// clearances, or a state becomes non-finite.
   double max_excursion_over_clearance = 50.0;

@@ -75,6 +75,15 @@ int RunHilCommand(const HilCommandOptions& options) {
     return kExitConfig;
   }
 
+  if (model->params.simulation.settle_s > 0.0) {
+    // The session's loop (controller_if/hil_session.hpp) starts from the levitated
+    // equilibrium; only `sim` and `fit` run the settled start.
+    fmt::print(stderr,
+               "error: {}: simulation.settle_s = {} s: a hil run starts from the levitated "
+               "equilibrium; the settled start is for sim and fit (set settle_s = 0)\n",
+               options.config_path, model->params.simulation.settle_s);
+    return kExitConfig;
+  }
   // The controller link and trigger sources (tools/hil_links.hpp).
   HilLinks links;
   std::int64_t substeps = 0;

@@ -48,6 +48,8 @@ struct RunStatistics {
   double final_spin_speed_rad_s = 0.0;
   std::string trajectory_hash;
   std::string output_error;  ///< a file the run could not write (empty: none)
+  double settle_s = 0.0;     ///< simulation.settle_s as run (whole controller periods)
+  double settle_last_change_m = 0.0;
 
   double simulated_time_s() const { return static_cast<double>(steps) * step_s; }
   double realtime_factor() const {
@@ -95,6 +97,15 @@ std::string SummaryJson(const RunStatistics& run, const RunSummary& summary) {
   json.Key("wall_time_s").Number(run.wall_time_s);
   json.Key("realtime_factor").Number(run.realtime_factor());
   json.Key("trigger_time_s").Number(run.trigger_time_s);
+  // Where the run started: the levitated equilibrium, or the closed loop's own steady state
+  // after settle_s (the rotor's largest change at a sensor plane over the last revolution).
+  json.Key("start").BeginObject(true);
+  json.Key("kind").String(run.settle_s > 0.0 ? "settled" : "equilibrium");
+  if (run.settle_s > 0.0) {
+    json.Key("settle_s").Number(run.settle_s);
+    json.Key("last_revolution_change_m").Number(run.settle_last_change_m);
+  }
+  json.EndObject();
   json.Key("final_spin_speed_rad_s").Number(run.final_spin_speed_rad_s);
   json.Key("observations").Integer(summary.observations());
   json.Key("trajectory_hash").String(run.trajectory_hash);
@@ -173,6 +184,15 @@ int RunSimCommand(const SimOptions& options) {
   }
 
   std::unique_ptr<RunRecordWriter> recorder;
+  if (!options.record_path.empty() && model->params.simulation.settle_s > 0.0) {
+    // A replay starts from the record's levitated equilibrium: it has no settled state to
+    // start from (nor the sensors' noise state), so it could not reproduce the run.
+    fmt::print(stderr,
+               "error: --record with simulation.settle_s = {} s: a record does not carry the "
+               "settled start yet; record without it (settle_s = 0)\n",
+               model->params.simulation.settle_s);
+    return kExitUsage;
+  }
   if (!options.record_path.empty()) {
     const bool internal = model->params.controller.kind == ControllerKind::kInternalPid;
     RecordHeaderInfo header;
@@ -223,6 +243,8 @@ int RunSimCommand(const SimOptions& options) {
   run.step_s = model->params.simulation.step_s;
   run.wall_time_s = std::chrono::duration<double>(stop - start).count();
   run.trajectory_hash = hasher.Hex();
+  run.settle_s = static_cast<double>(result.settle_steps) * run.step_s;
+  run.settle_last_change_m = result.settle_last_change_m;
   if (model->params.trigger.enabled) run.trigger_time_s = model->params.trigger.time_s;
   // The final state is exact even when the duration is not a multiple of the output interval;
   // the last observation is the fallback should a failed run leave no state.

@@ -13,6 +13,7 @@
 #include "controller_if/pid_controller.hpp"
 #include "controller_if/power_state.hpp"
 #include "controller_if/sensor_emulator.hpp"
+#include "controller_if/settled_start.hpp"
 #include "controller_if/state_dump.hpp"
 #include "rt_core/amb_force.hpp"
 #include "rt_core/model.hpp"
@@ -283,8 +284,16 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
     controller.emplace(model, period);
     controller_sensors.emplace(model.params.sensors, period);
     controller->Initial(&input);
-    keep_command();
     state = sim.InitialState(static_load);
+    // As `ambdrop sim` starts it: settled first when the config asks (simulation.settle_s).
+    const SettleResult settled =
+        SettleClosedLoop(model, sim, &state, &*controller, &*controller_sensors, &input);
+    if (settled.status != StepStatus::kOk) {
+      out.status = settled.status;
+      out.failure = settled.failure;
+      return out;
+    }
+    keep_command();
   } else if (closed) {
     state = sim.InitialState(static_load);
   } else {
