@@ -313,9 +313,10 @@ int main(int argc, char** argv) {
       ->required();
   CLI::Option* measured_option =
       fit_command
-          ->add_option("--measured", fit.measured_path,
-                       "The measured record: CSV, or an ambdrop run record (.lcm)")
-          ->type_name("FILE");
+          ->add_option("--measured", fit.measured_paths,
+                       "The measured record: CSV, or an ambdrop run record (.lcm); several "
+                       "records of one rig: each fitted, and what they share")
+          ->type_name("FILE...");
   CLI::Option* spin_up_option =
       fit_command
           ->add_option("--spin-up-times", fit.spin_up_times,

@@ -22,6 +22,8 @@
 #include "io/measured_record_si.hpp"
 #include "tools/exit_codes.hpp"
 #include "tools/fit/fit_record.hpp"
+#include "tools/fit/fit_report.hpp"
+#include "tools/fit/model_discrepancy.hpp"
 #include "tools/fit/run_record_measurement.hpp"
 #include "tools/fit/spinup_fit.hpp"
 #include "tools/record/run_record_reader.hpp"
@@ -208,12 +210,11 @@ int RunSpinUpFit(const FitOptions& options) {
   return kExitOk;
 }
 
-int RunFitCommand(const FitOptions& options) {
-  if (!options.spin_up_times.empty()) return RunSpinUpFit(options);
-  if (options.measured_path.empty()) {
-    fmt::print(stderr, "error: give the record (--measured FILE) or --spin-up-times\n");
-    return kExitUsage;
-  }
+// One record's fit into `out_dir`; `summary` (optional) receives its verdict and discrepancy.
+namespace {
+
+int FitOneRecord(const FitOptions& options, const std::string& measured_path,
+                 const std::string& out_dir, RecordDiscrepancy* summary) {
   const auto start = std::chrono::steady_clock::now();
   // The declared config, kept as a tree: each candidate effect is read through it with its own
   // --set overrides.
@@ -223,10 +224,10 @@ int RunFitCommand(const FitOptions& options) {
   try {
     variants.emplace(ConfigVariants::Load(options.config_path, options.overrides));
     const LoadedConfig& config = variants->declared();
-    if (IsEventLog(options.measured_path)) {
+    if (IsEventLog(measured_path)) {
       RunRecordFile file;
       try {
-        file = ReadRunRecord(options.measured_path);
+        file = ReadRunRecord(measured_path);
       } catch (const std::exception& e) {
         throw MeasuredRecordError(e.what());
       }
@@ -235,8 +236,8 @@ int RunFitCommand(const FitOptions& options) {
       // its config no longer loads, the declared one stands in.
       std::optional<LoadedConfig> recorded;
       try {
-        recorded = LoadConfigFromString(file.header.config_toml,
-                                        options.measured_path + " (recorded config)");
+        recorded =
+            LoadConfigFromString(file.header.config_toml, measured_path + " (recorded config)");
       } catch (const std::exception& e) {
         fmt::print(stderr, "warning: {}; the record is read with {}'s rig\n", e.what(),
                    options.config_path);
@@ -246,16 +247,16 @@ int RunFitCommand(const FitOptions& options) {
       try {
         converted = MeasurementFromRunRecord(file, rig);
       } catch (const std::invalid_argument& e) {
-        throw MeasuredRecordError(options.measured_path + ": " + e.what());
+        throw MeasuredRecordError(measured_path + ": " + e.what());
       }
       record = std::move(converted.record);
-      record.source = options.measured_path;
+      record.source = measured_path;
       const double interval = 1.0 / converted.measurement.sample_rate_Hz;
       if (std::abs(record.SampleInterval() / interval - 1.0) > 0.01) {
         throw MeasuredRecordError(fmt::format(
             "{}: sensor samples are missing: {} samples over {:.6g} s, at a period of {:.6g} s",
-            options.measured_path, record.time_s.size(),
-            record.time_s.back() - record.time_s.front(), interval));
+            measured_path, record.time_s.size(), record.time_s.back() - record.time_s.front(),
+            interval));
       }
       if (!config.measurement) {
         from_record =
@@ -267,7 +268,7 @@ int RunFitCommand(const FitOptions& options) {
                           ": no [measurement] table: say which record column is which quantity "
                           "(see io/config_measurement.hpp)");
       }
-      record = ReadMeasuredRecord(options.measured_path, *config.measurement);
+      record = ReadMeasuredRecord(measured_path, *config.measurement);
     }
     CheckRecord(from_record ? *from_record : *config.measurement, record, options.config_path);
   } catch (const std::exception& e) {
@@ -301,7 +302,7 @@ int RunFitCommand(const FitOptions& options) {
   }
   FitOutcome outcome;
   outcome.config_path = options.config_path;
-  outcome.measured_path = options.measured_path;
+  outcome.measured_path = measured_path;
   outcome.before = fit->residual_before;
   outcome.after = fit->residual_after;
   outcome.selection = &selection;
@@ -310,8 +311,18 @@ int RunFitCommand(const FitOptions& options) {
   outcome.chosen = fit->chosen;
   outcome.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const Discrepancy discrepancy =
+      DescribeDiscrepancy(config.params, m, record, fit->after, fit->residual_after, selection);
+  outcome.discrepancy = &discrepancy;
+  if (summary != nullptr) {
+    summary->record = measured_path;
+    summary->verdict = selection.verdict;
+    summary->discrepancy = discrepancy;
+    summary->signatures = fit->residual_before.signatures;
+    summary->chosen = selection.chosen;
+  }
   try {
-    const fs::path out(options.out_dir);
+    const fs::path out(out_dir);
     fs::create_directories(out);
     WriteTextFile(out / "fit.json", FitJson(outcome, config.params, m));
     WriteFitReport(out, outcome, config.params, m, record, fit->before, fit->after);
@@ -320,7 +331,7 @@ int RunFitCommand(const FitOptions& options) {
     return kExitError;
   }
   if (!options.quiet) {
-    fmt::print("{}: {} ({})\n", options.measured_path, selection.verdict, selection.reason);
+    fmt::print("{}: {} ({})\n", measured_path, selection.verdict, selection.reason);
     fmt::print("  overall relative RMS {:.4g} -> {:.4g}; chosen: {}\n", selection.rms_before,
                selection.rms_after,
                selection.chosen.empty() ? std::string("none")
@@ -331,9 +342,98 @@ int RunFitCommand(const FitOptions& options) {
     const auto fitted = std::count_if(selection.candidates.begin(), selection.candidates.end(),
                                       [](const CandidateScore& c) { return c.tried; });
     fmt::print("  {} of {} candidates fitted in {:.1f} s; {}/fit.json, {}/report.md\n", fitted,
-               selection.candidates.size(), outcome.wall_time_s, options.out_dir, options.out_dir);
+               selection.candidates.size(), outcome.wall_time_s, out_dir, out_dir);
   }
   return kExitOk;
+}
+
+// Several records of one rig: each fitted into its own directory, then what they share.
+int FitSeveralRecords(const FitOptions& options) {
+  const fs::path out(options.out_dir);
+  std::vector<RecordDiscrepancy> records;
+  std::vector<std::string> dirs;
+  int exit_code = kExitOk;
+  for (std::size_t i = 0; i < options.measured_paths.size(); ++i) {
+    const std::string& path = options.measured_paths[i];
+    // One directory per record, named by its file and its place on the command line (two
+    // records of one name in different folders stay apart).
+    const std::string dir =
+        (out / fmt::format("{:02d}_{}", i + 1, fs::path(path).stem().string())).string();
+    RecordDiscrepancy r;
+    const int code = FitOneRecord(options, path, dir, &r);
+    if (code != kExitOk) {
+      exit_code = exit_code == kExitOk ? code : exit_code;
+      continue;
+    }
+    records.push_back(std::move(r));
+    dirs.push_back(dir);
+  }
+  const std::vector<std::string> shared = SharedDiscrepancies(records);
+  try {
+    fs::create_directories(out);
+    JsonWriter json;
+    json.BeginObject();
+    json.Key("schema_version").Integer(1);
+    json.Key("config").String(options.config_path);
+    json.Key("records").BeginArray();
+    for (std::size_t i = 0; i < records.size(); ++i) {
+      const RecordDiscrepancy& r = records[i];
+      json.BeginObject();
+      json.Key("record").String(r.record);
+      json.Key("out").String(dirs[i]);
+      json.Key("verdict").String(r.verdict);
+      json.Key("discrepancy");
+      DiscrepancyJson(json, r.discrepancy);
+      json.EndObject();
+    }
+    json.EndArray();
+    json.Key("failed_records")
+        .Integer(static_cast<std::int64_t>(options.measured_paths.size() - records.size()));
+    json.Key("shared").BeginArray();
+    for (const std::string& line : shared) json.String(line);
+    json.EndArray();
+    json.EndObject();
+    WriteTextFile(out / "shared.json", json.str());
+    std::string md = fmt::format("# {} records of {}\n\n", records.size(), options.config_path);
+    md += "| record | verdict | residual left mostly on | shape |\n|---|---|---|---|\n";
+    for (const RecordDiscrepancy& r : records) {
+      md += fmt::format("| {} | {} | {} | {} |\n", r.record, r.verdict,
+                        r.discrepancy.dominant ? r.discrepancy.channel : "-",
+                        r.discrepancy.dominant ? r.discrepancy.shape : "-");
+    }
+    md += "\n## What the records share\n\n";
+    if (shared.empty()) md += "Nothing: each record's residual is its own.\n";
+    for (const std::string& line : shared) md += "- " + line + "\n";
+    if (records.size() < options.measured_paths.size()) {
+      md += fmt::format("\n{} record(s) could not be fitted (see stderr).\n",
+                        options.measured_paths.size() - records.size());
+    }
+    WriteTextFile(out / "shared.md", md);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitError;
+  }
+  if (!options.quiet) {
+    fmt::print("{} of {} records fitted; shared by all: {}\n", records.size(),
+               options.measured_paths.size(), shared.empty() ? "nothing" : "");
+    for (const std::string& line : shared) fmt::print("  - {}\n", line);
+    fmt::print("  {}/shared.md, {}/shared.json\n", options.out_dir, options.out_dir);
+  }
+  return exit_code;
+}
+
+}  // namespace
+
+int RunFitCommand(const FitOptions& options) {
+  if (!options.spin_up_times.empty()) return RunSpinUpFit(options);
+  if (options.measured_paths.empty()) {
+    fmt::print(stderr, "error: give the record (--measured FILE...) or --spin-up-times\n");
+    return kExitUsage;
+  }
+  if (options.measured_paths.size() == 1) {
+    return FitOneRecord(options, options.measured_paths.front(), options.out_dir, nullptr);
+  }
+  return FitSeveralRecords(options);
 }
 
 }  // namespace ambdrop

@@ -5,8 +5,10 @@
 namespace ambdrop {
 
 struct FitOptions {
-  std::string config_path;             ///< the declared model, with a [measurement] table
-  std::string measured_path;           ///< the measured record (CSV)
+  std::string config_path;  ///< the declared model, with a [measurement] table
+  /// The measured records (CSV or run records). Several: records of one rig, each fitted into
+  /// DIR/NN_<name>/, and DIR/shared.md, DIR/shared.json say what they share.
+  std::vector<std::string> measured_paths;
   std::vector<std::string> overrides;  ///< --set, on the declared model
   std::string out_dir = "out";
   double lead_s = 2e-3;  ///< simulated time before the trigger
@@ -21,7 +23,7 @@ struct FitOptions {
   std::string spin_up_times;
 };
 
-/// `ambdrop fit CONFIG --measured FILE --out DIR`: holds the declared model against a measured
+/// `ambdrop fit CONFIG --measured FILE... --out DIR`: holds the declared model against a measured
 /// record (tools/fit/): residual per channel and phase, the library's effects fitted and
 /// chosen by error cut and BIC, and a verdict. Writes DIR/fit.json and DIR/report.md. With
 /// spin_up_times: a table of single-parameter candidates, and DIR/spinup_fit.json.

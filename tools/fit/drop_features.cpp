@@ -245,7 +245,9 @@ std::vector<Signature> ResidualSignatures(const ModelParams& params, const Measu
     if (ch.quantity == MeasuredQuantity::kTdbSpeed ||
         ch.quantity == MeasuredQuantity::kRotorSpeed) {
       const double mean = Mean(e, trigger_row, e.size());
-      add("offset", mean, mean / range, {"tdb_drag_torque", "friction_coefficient"});
+      std::vector<std::string> to = {"tdb_drag_torque", "friction_coefficient"};
+      if (ch.quantity == MeasuredQuantity::kRotorSpeed) to.push_back("rotor_coast_down");
+      add("offset", mean, mean / range, std::move(to));
     }
   }
   std::stable_sort(out.begin(), out.end(), [](const Signature& a, const Signature& b) {

@@ -11,6 +11,7 @@
 
 #include "io/config_variants.hpp"
 #include "rt_core/limits.hpp"
+#include "rt_core/model.hpp"
 #include "tools/fit/key_effects.hpp"
 #include "tools/fit/registry_candidates.hpp"
 
@@ -465,6 +466,47 @@ Effect TdbDrag(const TdbParams& t) {
   return e;
 }
 
+// The rotor's own losses once the drive stops (issue 24 item 3: windage, bearing seals, eddy
+// currents), one law each, on a rig that declares none: constant T0, viscous c1 W, windage
+// c2 W^2 (rotor.coast_down). Their sizes scale with the rotor's polar inertia Ip and its speed
+// W0: each range reaches a loss of W0 in 50 ms, and the probe one of W0 in a second (a record
+// of 0.1 s after the trigger then loses a tenth of its speed to it).
+Effect RotorCoastDown(const char* law, const char* key, double scale) {
+  Effect e;
+  e.name = std::string("rotor_coast_down_") + law;
+  e.family = "rotor_coast_down";
+  e.description = fmt::format(
+      "{} coast-down torque on the rotor once the drive stops "
+      "(rotor.coast_down.{})",
+      law, key);
+  e.parameters = {{key, 0.0, 20.0 * scale, {0.01 * scale, 0.1 * scale, scale}, false, 0.0, true}};
+  e.revealed_by = {Q::kRotorSpeed, Q::kTdbSpeed, Q::kDisplacement};
+  e.probe = {scale};
+  const std::string full = std::string("rotor.coast_down.") + key;
+  e.overrides = [full](const std::vector<double>& v) {
+    return std::vector<std::string>{SetTrue("rotor.coast_down.enabled"),
+                                    Set(full, std::max(0.0, v[0]))};
+  };
+  return e;
+}
+
+void AddCoastDownEffects(const ModelParams& declared, std::vector<Effect>* effects) {
+  // Declared, its keys are refitted as the registry's other numbers are.
+  if (declared.rotor.coast_down.enabled) return;
+  const double w0 = declared.simulation.spin_speed_rad_s;
+  if (!(w0 > 0.0)) return;
+  double ip = 0.0;
+  try {
+    ip = BuildModel(declared).rotor.polar_inertia_kg_m2;
+  } catch (const std::exception&) {
+    return;  // the fit reports the declared model's own failure
+  }
+  if (!(ip > 0.0)) return;
+  effects->push_back(RotorCoastDown("constant", "constant_torque_N_m", ip * w0));
+  effects->push_back(RotorCoastDown("viscous", "viscous_N_m_s", ip));
+  effects->push_back(RotorCoastDown("windage", "windage_N_m_s2", ip / w0));
+}
+
 // A TDB's declared linear ribbon: the 4-DOF TDB's Kelvin-Voigt one, or the contact-law TDB's
 // bilinear law before crushing (keq, ceq). The ribbon laws replace it in its table.
 struct LinearRibbon {
@@ -666,6 +708,7 @@ std::vector<Effect> EffectLibrary(const ConfigVariants& variants, bool only_fami
     if (HasDragTorque(t)) effects.push_back(TdbDrag(t));
   }
   AddRaceSpinEffects(config, &effects);
+  AddCoastDownEffects(declared, &effects);
   // Ribbon laws replace a declared linear ribbon (issue 15: the contact-law TDB's too).
   for (const TdbParams& t : declared.tdbs) {
     const std::optional<LinearRibbon> ribbon = LinearRibbonOf(t);

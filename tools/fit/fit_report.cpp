@@ -102,6 +102,22 @@ std::string FromRecordNote(const ModelParams& params, const MeasurementParams& m
 
 }  // namespace
 
+void DiscrepancyJson(JsonWriter& json, const Discrepancy& d) {
+  json.BeginObject();
+  json.Key("dominant").Bool(d.dominant);
+  json.Key("channel").String(d.channel);
+  json.Key("description").String(d.description);
+  json.Key("share").Number(d.share);
+  json.Key("phase").String(d.phase);
+  json.Key("shape").String(d.shape);
+  json.Key("record_value").Number(d.record_value);
+  json.Key("model_value").Number(d.model_value);
+  json.Key("key_families").BeginArray(true);
+  for (const std::string& f : d.key_families) json.String(f);
+  json.EndArray();
+  json.EndObject();
+}
+
 std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementParams& m) {
   const Selection& s = *o.selection;
   JsonWriter json;
@@ -113,6 +129,10 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   json.Key("measured").String(o.measured_path);
   json.Key("verdict").String(s.verdict);
   json.Key("reason").String(s.reason);
+  if (o.discrepancy != nullptr) {
+    json.Key("discrepancy");
+    DiscrepancyJson(json, *o.discrepancy);
+  }
   json.Key("power_loss")
       .String(m.power_loss == PowerLossSource::kFromRecord ? "from_record" : "declared");
   json.Key("driving_channels").BeginArray();
@@ -320,6 +340,17 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
         part->step_sensitivity, part->start_sensitivity);
   }
   md += "\n";
+  if (o.discrepancy != nullptr && o.discrepancy->dominant) {
+    const Discrepancy& d = *o.discrepancy;
+    md += "## The declared model against the rig\n\n";
+    md += fmt::format(
+        "No candidate removes most of the residual: the declared model does not match the rig "
+        "here. {:.0f} % of what is left sits on '{}' ({}, {}): {}. Config keys that could "
+        "explain it:\n\n",
+        100.0 * d.share, d.channel, d.description, d.phase, d.shape);
+    for (const std::string& f : d.key_families) md += "- `" + f + "`\n";
+    md += "\n";
+  }
   if (!o.chosen.empty()) {
     md += "## Chosen effects\n\n";
     for (std::size_t e = 0; e < o.chosen.size(); ++e) {

@@ -5,8 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "io/json_writer.hpp"
 #include "tools/fit/effect_selection.hpp"
 #include "tools/fit/fit_step.hpp"
+#include "tools/fit/model_discrepancy.hpp"
 #include "tools/fit/residuals.hpp"
 
 namespace ambdrop {
@@ -21,7 +23,12 @@ struct FitOutcome {
   const std::vector<Effect>* library = nullptr;
   std::vector<const Effect*> chosen;  ///< in selection->chosen order
   double wall_time_s = 0.0;
+  /// The declared model against the rig (tools/fit/model_discrepancy.hpp); may be null.
+  const Discrepancy* discrepancy = nullptr;
 };
+
+/// A Discrepancy as a JSON object (fit.json's `discrepancy`, shared.json's per record).
+void DiscrepancyJson(JsonWriter& json, const Discrepancy& d);
 
 /// fit.json: rms_before and rms_after (per channel and overall), the agreement limits (the
 /// declared model's, and the one the chosen effects were judged by), chosen (effects with fitted
