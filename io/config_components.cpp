@@ -157,9 +157,11 @@ std::vector<UnbalanceParams> ReadUnbalances(const TableReader& root, const Axial
     unbalance.position_m = ReadAxialPosition(table, position);
     // A disabled unbalance does not demand its numbers (its position still places a station);
     // given, they are still checked.
+    // A named reference: a lambda may not capture a structured binding before C++20's clang 16.
+    const auto& reader = table;
     const auto number = [&](std::string_view key) {
-      return unbalance.enabled ? table.Number(key, NonNegative())
-                               : table.Number(key, NonNegative(), 0.0);
+      return unbalance.enabled ? reader.Number(key, NonNegative())
+                               : reader.Number(key, NonNegative(), 0.0);
     };
     unbalance.mass_kg = number("mass_kg");
     unbalance.eccentricity_m = number("eccentricity_m");

@@ -3,7 +3,7 @@
 # .ci/run runs that command. The jobs run one after another (CI has 2 cores and 30 minutes for
 # all of them); each prints "ok" or "FAILED" with its time, and the exit code is non-zero when
 # any job failed, so a CI job can be built on it. Run one job alone with its name as argument:
-#   tests/run_all.sh [format|release|asan|tsan]...
+#   tests/run_all.sh [format|release|asan|tsan|fuzz]...
 set -uo pipefail
 cd "$(dirname "$0")/.."
 cores=$(nproc)
@@ -49,6 +49,15 @@ asan() {
       ctest --test-dir build-asan --output-on-failure -j "$cores"
 }
 
+# libFuzzer (clang) on every decoder: the corpus and past crashes replayed, then each target
+# fuzzed for AMBDROP_FUZZ_SECONDS (10 s; tests/fuzz/README.md runs them longer).
+fuzz() {
+  CXX=clang++-14 cmake -S . -B build-fuzz -G Ninja -DAMBDROP_FUZZ=ON -DCMAKE_BUILD_TYPE=Debug \
+    -DCMAKE_CXX_FLAGS_DEBUG="-O1" -DAMBDROP_BUILD_BENCHMARKS=OFF &&
+    cmake --build build-fuzz --target ambdrop_fuzz_targets &&
+    ctest --test-dir build-fuzz -L fuzz --output-on-failure -j "$cores"
+}
+
 # TSan at -O1 on the threaded tests only; the tools are not built.
 tsan() {
   cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
@@ -58,15 +67,16 @@ tsan() {
 }
 
 selected=("$@")
-[[ ${#selected[@]} -gt 0 ]] || selected=(format release asan tsan)
+[[ ${#selected[@]} -gt 0 ]] || selected=(format release asan tsan fuzz)
 for job in "${selected[@]}"; do
   case $job in
     format) run_job format format_check ;;
     release) run_job release release ;;
     asan) run_job asan asan ;;
     tsan) run_job tsan tsan ;;
+    fuzz) run_job fuzz fuzz ;;
     *)
-      echo "unknown job '$job' (expected format, release, asan or tsan)" >&2
+      echo "unknown job '$job' (expected format, release, asan, tsan or fuzz)" >&2
       exit 64
       ;;
   esac

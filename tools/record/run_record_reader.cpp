@@ -15,39 +15,15 @@
 #include "ambdrop_lcm/recorded_power_t.hpp"
 #include "ambdrop_lcm/sensor_readings_t.hpp"
 #include "io/event_log.hpp"
+#include "tools/record/lcm_guarded_decode.hpp"
 #include "tools/record/record_channels.hpp"
 
 namespace ambdrop {
 namespace {
 
-// lcm-gen's decoders trust a string's length prefix: 0 asks std::string for SIZE_MAX bytes
-// (std::length_error), INT32_MIN overflows `len - 1`. The strings of our types lead the message
-// (after the 8-byte fingerprint), so they are checked here, before the generated code sees them.
-bool LeadingStringsSound(const std::vector<std::uint8_t>& data, int strings) {
-  std::size_t pos = 8;
-  for (int i = 0; i < strings; ++i) {
-    if (data.size() < pos + 4) return false;
-    const std::int64_t length = static_cast<std::int32_t>(
-        (std::uint32_t{data[pos]} << 24) | (std::uint32_t{data[pos + 1]} << 16) |
-        (std::uint32_t{data[pos + 2]} << 8) | std::uint32_t{data[pos + 3]});
-    pos += 4;
-    // The length counts the terminating NUL, which must be there.
-    if (length < 1 || static_cast<std::uint64_t>(length) > data.size() - pos) return false;
-    pos += static_cast<std::size_t>(length);
-    if (data[pos - 1] != 0) return false;
-  }
-  return true;
-}
-
 template <typename Message>
 bool Decode(const LogEvent& event, Message* out, int leading_strings = 0) {
-  if (!LeadingStringsSound(event.data, leading_strings)) return false;
-  try {
-    const int n = out->decode(event.data.data(), 0, static_cast<int>(event.data.size()));
-    return n == static_cast<int>(event.data.size());
-  } catch (const std::exception&) {  // the reader reports damage, it does not throw it
-    return false;
-  }
+  return DecodeLcmGuarded(std::span<const std::uint8_t>(event.data), out, leading_strings);
 }
 
 // A header whose numbers could not come from a run: a replay would divide by them or loop on them.
@@ -69,7 +45,7 @@ class Builder {
     const std::string& ch = e.channel;
     if (ch == kRecHeaderChannel) {
       ambdrop_lcm::record_header_t h{};
-      if (!Decode(e, &h, 5)) return Bad(e, "header");
+      if (!Decode(e, &h, kRecordHeaderStrings)) return Bad(e, "header");
       if (!HeaderSound(h)) {
         return Bad(
             e, "header",
@@ -157,7 +133,7 @@ class Builder {
       file_->states.push_back(s);
     } else if (ch == kRecFooterChannel) {
       ambdrop_lcm::record_footer_t m{};
-      if (!Decode(e, &m, 1)) return Bad(e, "footer");
+      if (!Decode(e, &m, kRecordFooterStrings)) return Bad(e, "footer");
       RecordFooter f;
       f.status = m.status;
       f.final_step = m.final_step;
