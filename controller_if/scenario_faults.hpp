@@ -39,6 +39,13 @@ class ScenarioLink final : public ControllerLink {
   bool PollCurrents(CurrentsMessage* out) noexcept override;
   void SendSensors(const SensorReadings& readings, std::int64_t step,
                    double time_s) noexcept override;
+  // An outside controller's lock step and status channel pass through the faults unchanged.
+  bool AwaitAnswer(std::chrono::nanoseconds timeout) noexcept override {
+    return inner_->AwaitAnswer(timeout);
+  }
+  void ObserveState(const Observation& observation) noexcept override {
+    inner_->ObserveState(observation);
+  }
 
   std::int64_t messages_swallowed() const noexcept { return swallowed_; }
 

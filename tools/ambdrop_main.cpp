@@ -171,7 +171,23 @@ int main(int argc, char** argv) {
   ambdrop::HilCommandOptions hil;
   CLI::App* hil_command = app.add_subcommand(
       "hil", "Run the emulator against a controller in real time: currents in, sensors out");
-  hil_command->add_option("CONFIG", hil.config_path, "TOML config file")->required();
+  CLI::Option* hil_config = hil_command->add_option("CONFIG", hil.config_path, "TOML config file");
+  CLI::Option* hil_scenario =
+      hil_command
+          ->add_option("--scenario", hil.scenario_path,
+                       "A scenario file in place of CONFIG: its power events, faults and "
+                       "expectations apply to whatever controller runs; exits 4 if one fails")
+          ->type_name("FILE");
+  hil_config->excludes(hil_scenario);
+  hil_command
+      ->add_option("--junit", hil.junit_path,
+                   "Write the run's checks and the scenario's expectations as JUnit XML")
+      ->type_name("FILE");
+  hil_command->callback([hil_config, hil_scenario] {
+    if (hil_config->count() == 0 && hil_scenario->count() == 0) {
+      throw CLI::RequiredError("CONFIG or --scenario");
+    }
+  });
   hil_command->add_option("--controller", hil.controller, "internal | lcm[:URL] | can:IFACE")
       ->capture_default_str();
   hil_command->add_option("--trigger", hil.trigger,

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <exception>
 #include <filesystem>
@@ -15,15 +16,18 @@
 #include "controller_if/periodic_loop.hpp"
 #include "controller_if/rt_clock.hpp"
 #include "controller_if/rt_system.hpp"
+#include "controller_if/scenario_faults.hpp"
 #include "io/config_loader.hpp"
 #include "io/json_writer.hpp"
 #include "io/timeseries_csv.hpp"
 #include "tools/exit_codes.hpp"
 #include "tools/hil_checks.hpp"
 #include "tools/hil_links.hpp"
+#include "tools/junit_report.hpp"
 #include "tools/long_run_note.hpp"
 #include "tools/record/run_record_writer.hpp"
 #include "tools/run_summary.hpp"
+#include "tools/scenario_outcome.hpp"
 #include "tools/tdb_summary_json.hpp"
 
 namespace ambdrop {
@@ -62,11 +66,19 @@ void WriteStats(JsonWriter& json, const char* key, const TimingStats& stats) {
 
 }  // namespace
 
-int RunHilCommand(const HilCommandOptions& options) {
+int RunHilCommand(const HilCommandOptions& given) {
+  // A scenario is a rig config with a [scenario] table: it stands where CONFIG would.
+  HilCommandOptions options = given;
+  if (!options.scenario_path.empty()) options.config_path = options.scenario_path;
+  const auto wall_start = std::chrono::steady_clock::now();
   LoadedConfig config;
   std::optional<Model> model;
   try {
     config = LoadConfig(options.config_path, options.overrides);
+    if (!options.scenario_path.empty() && !config.scenario) {
+      throw ConfigError(options.scenario_path +
+                        ": not a scenario: it has no [scenario] table (see configs/scenarios/)");
+    }
     model.emplace(BuildModel(config.params));
     // A config error (the controller period in whole steps), not one of the links' below.
     ControllerSubsteps(*model);
@@ -111,6 +123,29 @@ int RunHilCommand(const HilCommandOptions& options) {
     fmt::print(stderr, "error: --silence: {}\n", e.what());
     return kExitUsage;
   }
+  // The scenario's faults sit between the emulator and whatever controller runs, and its power
+  // events join the trigger sources; its watchdog settings are part of what it tests.
+  const ScenarioParams* scenario = config.scenario ? &*config.scenario : nullptr;
+  std::optional<ScenarioLink> scenario_link;
+  std::optional<ScenarioTrigger> scenario_trigger;
+  std::optional<ScenarioOutcome> outcome;
+  ControllerLink* link = links.link.get();
+  std::vector<TriggerSource*> triggers = links.triggers;
+  if (scenario != nullptr) {
+    scenario_link.emplace(links.link.get(), *model, *scenario);
+    scenario_trigger.emplace(*model, *scenario);
+    outcome.emplace(*model);
+    link = &*scenario_link;
+    triggers.push_back(&*scenario_trigger);
+    hil.watchdog_timeout_s = scenario->watchdog_timeout_s;
+    try {
+      hil.silence_action = ParseSilenceAction(scenario->silence_action);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: {}: scenario.silence_action: {}\n", options.scenario_path,
+                 e.what());
+      return kExitConfig;
+    }
+  }
 
   NoteLongRun(*model, !options.virtual_clock);
 
@@ -148,7 +183,7 @@ int RunHilCommand(const HilCommandOptions& options) {
   }
 
   auto outputs = std::make_unique<HilSession::OutputRing>();
-  HilSession session(*model, links.link.get(), links.triggers, hil, outputs.get());
+  HilSession session(*model, link, triggers, hil, outputs.get());
 
   // The writer drains observations off the real-time thread. A write error is held (an
   // exception here would terminate the process) and the ring still drained, so the loop runs on.
@@ -161,6 +196,7 @@ int RunHilCommand(const HilCommandOptions& options) {
       while (outputs->TryPop(&o)) {
         summary.Add(o);
         checks.Add(o);
+        if (outcome) outcome->Add(o);
         any = true;
         if (!output_error.empty()) continue;
         try {
@@ -222,7 +258,7 @@ int RunHilCommand(const HilCommandOptions& options) {
     session.Start(clock->Now());
     const auto lockstep_timeout =
         std::chrono::nanoseconds(std::llround(options.lockstep_timeout_s * 1e9));
-    if (options.lockstep && !links.link->AwaitAnswer(lockstep_timeout)) ++lockstep_timeouts;
+    if (options.lockstep && !link->AwaitAnswer(lockstep_timeout)) ++lockstep_timeouts;
     LoopRunOptions run;
     run.stop = &g_stop;
     // Periods the loop skipped after an overrun still advance the physics (HilSession::Period),
@@ -230,7 +266,7 @@ int RunHilCommand(const HilCommandOptions& options) {
     result = loop->Run(
         [&](const LoopTick& tick) {
           const bool more = session.Period(tick.wake_ns, tick.missed_before);
-          if (more && options.lockstep && !links.link->AwaitAnswer(lockstep_timeout)) {
+          if (more && options.lockstep && !link->AwaitAnswer(lockstep_timeout)) {
             ++lockstep_timeouts;
           }
           return more;
@@ -275,14 +311,25 @@ int RunHilCommand(const HilCommandOptions& options) {
   }
   const std::string check_failures = checks.Failures(
       first_power_event_s, counters.currents_received, options.controller != "internal");
+  // The scenario's expectations, judged on the run's own stop (a scenario may expect the
+  // watchdog to stop it).
+  std::vector<ScenarioOutcome::Check> expectations;
+  if (outcome)
+    expectations = outcome->Evaluate(scenario->expect, StopName(session.stop()), session);
+  const bool expectations_pass =
+      std::all_of(expectations.begin(), expectations.end(), [](const auto& c) { return c.pass; });
   std::string status = StopName(session.stop());
-  if (session.stop() == HilStop::kDuration) {
+  if (session.stop() == HilStop::kDuration || !expectations.empty()) {
     if (!output_error.empty()) {
       status = "output_error";
     } else if (rejected > 0) {
       status = "controller_messages_rejected";
     } else if (!check_failures.empty()) {
       status = "check_failed";
+    } else if (!expectations_pass) {
+      status = "expectation_failed";
+    } else if (!expectations.empty()) {
+      status = "ok";  // the scenario expected how the run stopped
     }
   }
   json.Key("status").String(status);
@@ -334,8 +381,42 @@ int RunHilCommand(const HilCommandOptions& options) {
   }
   WriteStats(json, "wakeup_lateness", loop->lateness());
   WriteStats(json, "compute_per_period", loop->compute());
+  if (scenario != nullptr) {
+    json.Key("scenario").BeginObject();
+    json.Key("path").String(options.scenario_path);
+    json.Key("description").String(scenario->description);
+    json.Key("relevitated").Bool(outcome->relevitated());
+    json.Key("currents_swallowed").Integer(scenario_link->messages_swallowed());
+    json.Key("pass").Bool(expectations_pass);
+    json.Key("checks");
+    WriteScenarioChecks(json, expectations);
+    json.EndObject();
+  }
   WriteTdbSummaries(json, summary);
   json.EndObject();
+  if (!options.junit_path.empty()) {
+    // One test case per check a CI job cares about: the run's own, then each expectation.
+    std::vector<JunitCase> cases;
+    cases.push_back({"hil", "run_completed", status != "interrupted" && status != "diverged",
+                     fmt::format("the run stopped: {}", StopName(session.stop()))});
+    cases.push_back({"hil", "outputs_written", output_error.empty(), output_error});
+    cases.push_back({"hil", "controller_messages_accepted", rejected == 0,
+                     fmt::format("{} controller messages refused", rejected)});
+    cases.push_back({"hil", "checks", check_failures.empty(), check_failures});
+    for (const ScenarioOutcome::Check& c : expectations) {
+      cases.push_back({"hil.scenario", c.name, c.pass,
+                       fmt::format("expected {}, got {}", c.expected, c.actual)});
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    try {
+      WriteJunit(options.junit_path,
+                 fmt::format("ambdrop hil {} ({})", options.config_path, options.controller), cases,
+                 seconds);
+    } catch (const std::exception& e) {
+      if (output_error.empty()) output_error = std::string("--junit: ") + e.what();
+    }
+  }
   try {
     WriteTextFile(out_dir / "summary.json", json.str());
   } catch (const std::exception& e) {
@@ -361,9 +442,18 @@ int RunHilCommand(const HilCommandOptions& options) {
                rejected, (out_dir / "summary.json").string());
   }
   if (!check_failures.empty()) fmt::print(stderr, "error: check failed: {}\n", check_failures);
+  if (!options.quiet) {
+    for (const auto& c : expectations) {
+      fmt::print("  {:<4} {:<28} expected {:<14} got {}\n", c.pass ? "ok" : "FAIL", c.name,
+                 c.expected, c.actual);
+    }
+  }
+  if (!expectations_pass) {
+    fmt::print(stderr, "error: {}: an expected outcome did not happen\n", options.scenario_path);
+  }
   if (session.stop() == HilStop::kDiverged) return kExitRunFailed;
   if (!output_error.empty() || rejected > 0) return kExitError;
-  return check_failures.empty() ? kExitOk : kExitExpectationFailed;
+  return check_failures.empty() && expectations_pass ? kExitOk : kExitExpectationFailed;
 }
 
 }  // namespace ambdrop

@@ -6,6 +6,11 @@ namespace ambdrop {
 
 struct HilCommandOptions {
   std::string config_path;
+  /// `--scenario FILE`: a scenario (a rig config with a [scenario] table) in place of CONFIG:
+  /// its power events, faults and expectations apply to whatever controller runs.
+  std::string scenario_path;
+  /// `--junit FILE`: the run's checks (and the scenario's expectations) as JUnit XML.
+  std::string junit_path;
   std::string out_dir = "out";
   std::vector<std::string> overrides;
   std::string controller = "internal";  ///< internal | lcm[:URL] | can:IFACE

@@ -34,7 +34,21 @@ unshare -n bash -c "
   '$tool' hil '$config' --controller lcm --virtual-clock --lockstep --set simulation.duration_s=0.3 \
     --set trigger.time_s=0.15 --out '$work/lockstep' --quiet
   wait
+  # A scenario against the outside controller (issue 17): the power dip, in lock step; the
+  # controller process knows nothing of it and must re-levitate the rotor after the restore.
+  '$controller' '$config' --idle-exit-s 1 > '$work/controller_scenario.log' 2>&1 &
+  sleep 0.5
+  '$tool' hil --scenario '$source_dir/configs/scenarios/power_dip_relevitation.toml' \
+    --controller lcm --virtual-clock --lockstep --out '$work/scenario' \
+    --junit '$work/scenario.xml' --quiet
+  wait
 "
+grep -q 'failures="0"' "$work/scenario.xml" || {
+  cat "$work/scenario.xml"
+  echo "FAIL: the power-dip scenario against the outside LCM controller did not pass"
+  exit 1
+}
+echo "power-dip scenario against the outside controller over LCM: every expectation passed"
 # Lock step over LCM at 20 kHz is the offline simulation, byte for byte: the external process
 # runs the same PID on the same samples, one period later, as the in-process controller does.
 "$tool" sim "$config" --set simulation.duration_s=0.3 --set trigger.time_s=0.15 \
