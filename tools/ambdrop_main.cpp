@@ -183,6 +183,12 @@ int main(int argc, char** argv) {
       ->add_option("--junit", hil.junit_path,
                    "Write the run's checks and the scenario's expectations as JUnit XML")
       ->type_name("FILE");
+  hil_command
+      ->add_option("--describe", hil.describe_path,
+                   "Write the plant description (index order, units, rates, per AMB the static "
+                   "load, ki, ks, bias and limits; the reference controller in A/m) as JSON, and "
+                   "exit without running")
+      ->type_name("FILE");
   hil_command->callback([hil_config, hil_scenario] {
     if (hil_config->count() == 0 && hil_scenario->count() == 0) {
       throw CLI::RequiredError("CONFIG or --scenario");

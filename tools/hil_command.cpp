@@ -25,6 +25,7 @@
 #include "tools/hil_links.hpp"
 #include "tools/junit_report.hpp"
 #include "tools/long_run_note.hpp"
+#include "tools/plant_description.hpp"
 #include "tools/record/run_record_writer.hpp"
 #include "tools/run_summary.hpp"
 #include "tools/scenario_outcome.hpp"
@@ -87,6 +88,15 @@ int RunHilCommand(const HilCommandOptions& given) {
     return kExitConfig;
   }
 
+  if (!options.describe_path.empty()) {
+    try {
+      WriteTextFile(options.describe_path, PlantDescriptionJson(*model, options.config_path));
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: --describe: {}\n", e.what());
+      return kExitError;
+    }
+    return kExitOk;
+  }
   if (model->params.simulation.settle_s > 0.0) {
     // The session's loop (controller_if/hil_session.hpp) starts from the levitated
     // equilibrium; only `sim` and `fit` run the settled start.

@@ -11,6 +11,8 @@ struct HilCommandOptions {
   std::string scenario_path;
   /// `--junit FILE`: the run's checks (and the scenario's expectations) as JUnit XML.
   std::string junit_path;
+  /// `--describe FILE`: write the plant description (tools/plant_description.hpp) and exit.
+  std::string describe_path;
   std::string out_dir = "out";
   std::vector<std::string> overrides;
   std::string controller = "internal";  ///< internal | lcm[:URL] | can:IFACE
