@@ -93,6 +93,22 @@ int main(int argc, char** argv) {
   replay_command->add_option("--config", replay.config_path,
                              "Replay with this config instead of the recorded one (reports the "
                              "differences)");
+  replay_command->add_flag("--strict", replay.strict,
+                           "Exit 4 unless every recorded sensor sample is reproduced within "
+                           "--tolerance-m (by value: -0 equals 0)");
+  replay_command
+      ->add_option("--tolerance-m", replay.tolerance_m,
+                   "Tolerance of --strict (m); default 0 for an ambdrop record, half the frame "
+                   "map's coarsest sensor count for a candump log")
+      ->check(kFinite & CLI::NonNegativeNumber)
+      ->type_name("M");
+  replay_command
+      ->add_option("--align", replay.align,
+                   "How a candump log's frames are placed at steps: time (receive times, a live "
+                   "run) or sequence (the k-th sensor frame is the k-th exchange: a lock-step "
+                   "capture)")
+      ->check(CLI::IsMember({"time", "sequence"}))
+      ->capture_default_str();
   replay_command->add_option("--out", replay.out_dir, "Output directory")
       ->type_name("DIR")
       ->capture_default_str();

@@ -108,7 +108,9 @@ int RunReplayCommand(const ReplayOptions& options) {
       return kExitConfig;
     }
     try {
-      dump = ReadCandumpRecord(options.record_path, *model, *config.can);
+      dump = ReadCandumpRecord(
+          options.record_path, *model, *config.can,
+          options.align == "sequence" ? CandumpAlign::kSequence : CandumpAlign::kTime);
       for (const std::string& w : dump->warnings) fmt::print(stderr, "warning: {}\n", w);
       if (!options.quiet) {
         fmt::print(
@@ -159,7 +161,21 @@ int RunReplayCommand(const ReplayOptions& options) {
 
   std::vector<std::string> sensor_names;
   for (const SensorParams& s : model->params.sensors) sensor_names.push_back(s.name);
-  SensorDiff diff(record.sensors, sensor_names);
+  // By value within this tolerance (replay --strict): an ambdrop record's readings are the
+  // emulator's own doubles (0: -0 equals 0, nothing else does); a candump log's are the frame
+  // map's counts, so half the coarsest sensor count.
+  double tolerance_m = options.tolerance_m;
+  if (tolerance_m < 0.0) {
+    tolerance_m = 0.0;
+    if (dump) {
+      for (const CanSignalSpec& signal : config.can->frame_map.spec().signals) {
+        if (signal.role == CanSignalRole::kSensor) {
+          tolerance_m = std::max(tolerance_m, 0.5 * std::abs(signal.scaling.scale));
+        }
+      }
+    }
+  }
+  SensorDiff diff(record.sensors, sensor_names, tolerance_m);
   RunSummary summary(model->params);
   std::string output_error;
   TrajectoryHasher hasher(model->params.sensors.size());
@@ -194,9 +210,11 @@ int RunReplayCommand(const ReplayOptions& options) {
   json.Key("config").String(recorded_config ? "recorded" : options.config_path);
   json.Key("config_hash_recorded").String(record.header.config_hash);
   // A replay whose outputs failed is not ok, even if its physics was.
-  json.Key("status").String(result.status == StepStatus::kOk && !result.watchdog_stop &&
-                                    !output_error.empty()
-                                ? "output_error"
+  // Nor is a strict replay that does not reproduce its record.
+  const bool physics_ok = result.status == StepStatus::kOk && !result.watchdog_stop;
+  json.Key("status").String(physics_ok && !output_error.empty() ? "output_error"
+                            : physics_ok && options.strict && !diff.within_tolerance()
+                                ? "replay_differs"
                                 : StatusText(result));
   json.Key("output_error");
   if (output_error.empty()) {
@@ -210,6 +228,8 @@ int RunReplayCommand(const ReplayOptions& options) {
   json.Key("wall_time_s").Number(wall_s);
   json.Key("trajectory_hash").String(hasher.Hex());
   json.Key("replay").BeginObject();
+  json.Key("strict").Bool(options.strict);
+  if (dump) json.Key("align").String(options.align);
   diff.WriteJson(json, dt);
   json.EndObject();
   if (dump) {
@@ -244,6 +264,13 @@ int RunReplayCommand(const ReplayOptions& options) {
   }
   if (result.status != StepStatus::kOk && !result.failure_message.empty()) {
     fmt::print(stderr, "replay stopped: {}\n", result.failure_message);
+  }
+  if (options.strict && !diff.within_tolerance()) {
+    fmt::print(stderr,
+               "error: --strict: the replay does not reproduce the record within {:.3g} m: {} "
+               "of {} samples beyond it, {} not reproduced\n",
+               tolerance_m, diff.beyond_tolerance(), diff.compared(), diff.missing());
+    return kExitExpectationFailed;
   }
   if (recorded_config && !diff.identical() && !record.damaged) {
     fmt::print(stderr,

@@ -17,6 +17,13 @@ struct ReplayOptions {
   /// replaying (tools/record/profile_export.hpp).
   std::string export_profile_path;
   ProfileWindow profile;  ///< the part exported, and the points per AMB
+  /// `--strict`: exit 4 unless every recorded sensor sample is reproduced within the tolerance.
+  bool strict = false;
+  /// `--tolerance-m`: by value (-0 equals 0); < 0: the default, 0 for an ambdrop record and half
+  /// the frame map's coarsest sensor count for a candump log.
+  double tolerance_m = -1.0;
+  /// `--align time|sequence`: how a candump log's frames are placed at steps.
+  std::string align = "time";
 };
 
 /// `ambdrop replay`: re-runs a recorded run offline from its recorded inputs at their recorded

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # `ambdrop sim --record` then `ambdrop replay`: the replay reproduces timeseries.csv byte for
 # byte, says the sensor outputs are identical, and a second replay gives the same bytes again;
-# a changed config replays with a difference report (exit 0); a truncated record replays with a
-# warning that says where; garbage is refused with a clear error.
+# a changed config replays with a difference report (exit 0; with --strict exit 4); a truncated
+# record replays with a warning that says where; garbage is refused with a clear error.
 # Usage: record_replay.sh AMBDROP_BINARY SOURCE_DIR
 set -euo pipefail
 
@@ -68,6 +68,17 @@ pid=$work/jarroux2019_industrial_pid
   >"$work/changed.txt" || fail "a replay with a changed config exited non-zero"
 grep -q "first at step" "$work/changed.txt" || fail "no difference report: $(cat "$work/changed.txt")"
 grep -q '"identical": false' "$work/changed/summary.json" || fail "summary.json says identical"
+# The same with --strict: exit 4 and status replay_differs; a tolerance larger than every
+# difference lets it pass by value; the recorded config passes strictly (0 tolerance).
+rc=0
+"$tool" replay "$pid/run.lcm" --set tdb.de.friction.coefficient=0.3 --strict --out "$work/strict" \
+  --quiet 2>"$work/strict.err" || rc=$?
+[[ $rc -eq 4 ]] || fail "--strict with differences exited $rc, expected 4"
+grep -q '"status": "replay_differs"' "$work/strict/summary.json" || fail "strict status not replay_differs"
+"$tool" replay "$pid/run.lcm" --set tdb.de.friction.coefficient=0.3 --strict --tolerance-m 1 \
+  --out "$work/loose" --quiet || fail "--strict --tolerance-m 1 exited $?"
+"$tool" replay "$pid/run.lcm" --strict --out "$work/exact" --quiet ||
+  fail "the recorded config failed --strict"
 
 # A truncated record: replays up to the cut, warns where.
 size=$(stat -c %s "$pid/run.lcm")

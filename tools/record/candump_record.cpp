@@ -94,7 +94,7 @@ bool IsCandumpLog(const std::filesystem::path& path) {
 }
 
 CandumpRecord ReadCandumpRecord(const std::filesystem::path& path, const Model& model,
-                                const CanConfig& can) {
+                                const CanConfig& can, CandumpAlign align) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path.string() + ": cannot open");
   std::vector<LogLine> lines;
@@ -171,9 +171,20 @@ CandumpRecord ReadCandumpRecord(const std::filesystem::path& path, const Model& 
   // Frames after the run's end cannot act on it; the bound also keeps the time-to-step
   // conversions below inside int64 for any finite time.
   const std::int64_t last_period = model.total_steps / substeps + 1;
+  // Sequence alignment: samples per exchange (the link sends every n-th sample).
+  const double exchange_Hz = can.exchange_rate_Hz > 0.0 ? can.exchange_rate_Hz : 1.0 / period_s;
+  const std::int64_t per_exchange =
+      std::max<std::int64_t>(1, std::llround(1.0 / (exchange_Hz * period_s)));
+  std::int64_t exchanges = 0;  // sensor frames completed so far
   for (const LogLine& l : lines) {
     if (l.time_s < *t0) continue;
-    const double since = l.time_s - *t0;
+    // The time this frame stands for: its receive time, or (by sequence) the time of the last
+    // exchange completed before it.
+    const double since =
+        align == CandumpAlign::kTime
+            ? l.time_s - *t0
+            : static_cast<double>(std::max<std::int64_t>(exchanges - 1, 0) * per_exchange) *
+                  period_s;
     if (!(since / period_s < static_cast<double>(last_period))) {
       if (++record.frames_after_end == 1) {
         record.warnings.push_back(fmt::format(
@@ -192,7 +203,10 @@ CandumpRecord ReadCandumpRecord(const std::filesystem::path& path, const Model& 
       // The sample of step k S leaves at wall time k T after time zero, at the end of the
       // deadline that computed steps (k-1) S .. k S. A frame arriving between n T and (n+1) T is
       // polled at the next deadline, which computes the period from step n S.
-      const auto n = static_cast<std::int64_t>(std::floor(since / period_s));
+      // By sequence the period is counted, not computed from a time (no rounding).
+      const auto n = align == CandumpAlign::kTime
+                         ? static_cast<std::int64_t>(std::floor(since / period_s))
+                         : std::max<std::int64_t>(exchanges - 1, 0) * per_exchange;
       const std::int64_t step = n * substeps;
       last_step = std::max(last_step, step);
       if (command.power_fail_frames != fails || command.power_restore_frames != restores) {
@@ -213,7 +227,9 @@ CandumpRecord ReadCandumpRecord(const std::filesystem::path& path, const Model& 
     if (view.Decode(l.frame, &outputs, &view_counters) == DecodeResult::kApplied) {
       if (view.CompletesSensors(l.frame)) {
         RecordedSensors s;
-        s.step = std::llround(since / period_s) * substeps;
+        s.step = align == CandumpAlign::kTime ? std::llround(since / period_s) * substeps
+                                              : exchanges * per_exchange * substeps;
+        ++exchanges;
         s.time_s = static_cast<double>(s.step) * model.params.simulation.step_s;
         for (int i = 0; i < kMaxSensors; ++i) s.readings.reading_m[i] = outputs.sensor_xy_m[i];
         if (record.sensors.empty() || s.step > record.sensors.back().step) {

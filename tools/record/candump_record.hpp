@@ -36,6 +36,16 @@ struct CandumpRecord {
   bool damaged() const { return malformed_lines > 0 || out_of_order_lines > 0; }
 };
 
+/// How the log's frames are placed at steps.
+enum class CandumpAlign {
+  /// By receive time from the first sensor frame (a live, wall-clock run).
+  kTime,
+  /// By sequence: the k-th completed sensor frame is the k-th exchange (step k n S, n samples per
+  /// exchange), and a controller frame after it applies from that step. A lock-step run on the
+  /// virtual clock: its wall times say nothing of its steps.
+  kSequence,
+};
+
 /// True if the file looks like a candump -l log (its first line starts with "(").
 bool IsCandumpLog(const std::filesystem::path& path);
 
@@ -43,6 +53,6 @@ bool IsCandumpLog(const std::filesystem::path& path);
 /// of the map (no time zero); malformed lines (a receive time that is not finite included),
 /// lines whose time goes back, and frames after the run's end are counted and skipped.
 CandumpRecord ReadCandumpRecord(const std::filesystem::path& path, const Model& model,
-                                const CanConfig& can);
+                                const CanConfig& can, CandumpAlign align = CandumpAlign::kTime);
 
 }  // namespace ambdrop

@@ -8,8 +8,11 @@
 namespace ambdrop {
 
 SensorDiff::SensorDiff(const std::vector<RecordedSensors>& recorded,
-                       std::vector<std::string> sensor_names)
-    : recorded_(recorded), names_(std::move(sensor_names)), max_abs_m_(2 * names_.size(), 0.0) {}
+                       std::vector<std::string> sensor_names, double tolerance_m)
+    : recorded_(recorded),
+      names_(std::move(sensor_names)),
+      tolerance_m_(tolerance_m),
+      max_abs_m_(2 * names_.size(), 0.0) {}
 
 void SensorDiff::Add(const RecordedSensors& replayed) {
   while (next_ < recorded_.size() && recorded_[next_].step < replayed.step) ++next_;
@@ -17,11 +20,15 @@ void SensorDiff::Add(const RecordedSensors& replayed) {
   const RecordedSensors& rec = recorded_[next_++];
   ++compared_;
   bool differs = false;
+  bool beyond = false;
   for (std::size_t s = 0; s < names_.size(); ++s) {
     for (int axis = 0; axis < 2; ++axis) {
       const double a = rec.readings.reading_m[s][axis];
       const double b = replayed.readings.reading_m[s][axis];
       if (std::memcmp(&a, &b, sizeof a) == 0) continue;
+      // By value: -0 and 0 are one reading; two NaNs (a sensor that reads nothing) agree.
+      const bool both_nan = std::isnan(a) && std::isnan(b);
+      if (!both_nan && !(std::abs(a - b) <= tolerance_m_)) beyond = true;
       differs = true;
       const double d = std::abs(a - b);
       double& m = max_abs_m_[2 * s + axis];
@@ -30,6 +37,7 @@ void SensorDiff::Add(const RecordedSensors& replayed) {
     }
   }
   if (differs) ++differing_;
+  if (beyond) ++beyond_tolerance_;
 }
 
 std::string SensorDiff::Describe(double step_s) const {
@@ -61,6 +69,9 @@ void SensorDiff::WriteJson(JsonWriter& json, double step_s) const {
   json.Key("samples_compared").Integer(compared_);
   json.Key("samples_differing").Integer(differing_);
   json.Key("samples_missing").Integer(missing());
+  json.Key("tolerance_m").Number(tolerance_m_);
+  json.Key("samples_beyond_tolerance").Integer(beyond_tolerance_);
+  json.Key("within_tolerance").Bool(within_tolerance());
   if (differing_ > 0) {
     json.Key("first_difference").BeginObject();
     json.Key("step").Integer(first_.step);

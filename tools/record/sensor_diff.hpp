@@ -9,15 +9,22 @@
 namespace ambdrop {
 
 /// Compares replayed sensor samples with the recorded ones, step by step, bit for bit: the
-/// first difference (step, sensor, axis, values) and the largest one per channel.
+/// first difference (step, sensor, axis, values) and the largest one per channel. Beside the
+/// bits, by value within `tolerance_m` (-0 equals 0, NaN equals NaN): what `replay --strict`
+/// holds a record to (a candump log carries readings in the frame map's counts).
 class SensorDiff {
  public:
-  SensorDiff(const std::vector<RecordedSensors>& recorded, std::vector<std::string> sensor_names);
+  SensorDiff(const std::vector<RecordedSensors>& recorded, std::vector<std::string> sensor_names,
+             double tolerance_m = 0.0);
 
   /// A replayed sample; samples at steps the record has none for are not compared.
   void Add(const RecordedSensors& replayed);
 
   bool identical() const noexcept { return differing_ == 0 && missing() == 0; }
+  /// Every recorded sample reproduced, each reading within the tolerance by value.
+  bool within_tolerance() const noexcept { return beyond_tolerance_ == 0 && missing() == 0; }
+  std::int64_t beyond_tolerance() const noexcept { return beyond_tolerance_; }
+  double tolerance_m() const noexcept { return tolerance_m_; }
   std::int64_t compared() const noexcept { return compared_; }
   std::int64_t differing() const noexcept { return differing_; }
   /// Step of the first differing sample; -1 if none differs.
@@ -43,6 +50,8 @@ class SensorDiff {
   std::size_t next_ = 0;
   std::int64_t compared_ = 0;
   std::int64_t differing_ = 0;
+  double tolerance_m_ = 0.0;
+  std::int64_t beyond_tolerance_ = 0;
   Difference first_;
   std::vector<double> max_abs_m_;  // per sensor*2 + axis
 };
