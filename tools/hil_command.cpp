@@ -29,6 +29,7 @@
 #include "tools/record/run_record_writer.hpp"
 #include "tools/run_summary.hpp"
 #include "tools/scenario_outcome.hpp"
+#include "tools/settled_start_refusal.hpp"
 #include "tools/tdb_summary_json.hpp"
 
 namespace ambdrop {
@@ -97,15 +98,7 @@ int RunHilCommand(const HilCommandOptions& given) {
     }
     return kExitOk;
   }
-  if (model->params.simulation.settle_s > 0.0) {
-    // The session's loop (controller_if/hil_session.hpp) starts from the levitated
-    // equilibrium; only `sim` and `fit` run the settled start.
-    fmt::print(stderr,
-               "error: {}: simulation.settle_s = {} s: a hil run starts from the levitated "
-               "equilibrium; the settled start is for sim and fit (set settle_s = 0)\n",
-               options.config_path, model->params.simulation.settle_s);
-    return kExitConfig;
-  }
+  if (RefusesSettledStart(*model, options.config_path, "hil")) return kExitConfig;
   // The controller link and trigger sources (tools/hil_links.hpp).
   HilLinks links;
   std::int64_t substeps = 0;

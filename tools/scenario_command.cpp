@@ -22,6 +22,7 @@
 #include "tools/record/trajectory_hasher.hpp"
 #include "tools/run_summary.hpp"
 #include "tools/scenario_outcome.hpp"
+#include "tools/settled_start_refusal.hpp"
 #include "tools/tdb_summary_json.hpp"
 
 namespace ambdrop {
@@ -63,15 +64,7 @@ int RunScenarioCommand(const SimOptions& options) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitConfig;
   }
-  if (model->params.simulation.settle_s > 0.0) {
-    // The session's loop (controller_if/hil_session.hpp) starts from the levitated
-    // equilibrium; only `sim` and `fit` run the settled start.
-    fmt::print(stderr,
-               "error: {}: simulation.settle_s = {} s: a scenario run starts from the levitated "
-               "equilibrium; the settled start is for sim and fit (set settle_s = 0)\n",
-               options.config_path, model->params.simulation.settle_s);
-    return kExitConfig;
-  }
+  if (RefusesSettledStart(*model, options.scenario_path, "scenario")) return kExitConfig;
   NoteLongRun(*model, false);
   const ScenarioParams& scenario = *config.scenario;
   const double dt = model->params.simulation.step_s;
