@@ -16,6 +16,7 @@
 #include "rt_core/model.hpp"
 #include "test_configs.hpp"
 #include "tools/fit/measured_record_maker.hpp"
+#include "tools/fit/record_cost.hpp"
 #include "tools/fit/simulate_on_record.hpp"
 
 namespace ambdrop {
@@ -126,6 +127,35 @@ TEST(SettledStart, TheFitsClosedLoopSettlesAsSimDoes) {
   // The record's sensors are noisy and quantised (0.1 um); the prediction is neither.
   EXPECT_LT(settled, 0.35e-6);
   EXPECT_GT(cold, 3.0 * settled);
+}
+
+// A candidate model that stops while settling (here at an excursion bound it cannot keep)
+// predicts nothing of the record: every row NaN, and the fit's cost is the unreached one (the
+// run once returned no rows at all, and the fit read past them).
+TEST(SettledStart, AModelThatStopsWhileSettlingReachesNoRow) {
+  std::vector<std::string> truth = Unbalanced(0.0);
+  truth.push_back("trigger.enabled=true");
+  truth.push_back("trigger.time_s=0.05");
+  MeasureOptions options;
+  options.channels.current = false;
+  const SyntheticMeasurement made =
+      MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), options);
+  std::vector<std::string> declared = truth;
+  declared.push_back("simulation.settle_s=0.2");
+  declared.push_back("simulation.max_excursion_over_clearance=0.001");
+  const ModelParams params = testing::LoadTestConfig(kRig, declared);
+  const SimulatedRecord sim = SimulateOnRecord(params, made.measurement, made.record, {});
+  EXPECT_THAT(sim.failure, ::testing::HasSubstr("while settling"));
+  ASSERT_EQ(sim.values.size(), made.measurement.channels.size());
+  for (const std::vector<double>& channel : sim.values) {
+    ASSERT_EQ(channel.size(), made.record.time_s.size());
+    EXPECT_TRUE(
+        std::all_of(channel.begin(), channel.end(), [](double v) { return std::isnan(v); }));
+  }
+  const RecordCost cost(params, made.measurement, made.record, {});
+  const Eigen::VectorXd r = cost.Residual(sim);
+  EXPECT_EQ(r, cost.Unreached());
+  EXPECT_GT(r.norm(), 0.0);
 }
 
 TEST(SettledStart, NeedsTheInProcessController) {

@@ -133,11 +133,12 @@ TEST(TruthGenerator, RaceSpinUpUnderSlidingFrictionIsMuNROverJ) {
 TEST(TruthGenerator, FrictionalContactNeverAddsEnergy) {
   Rig rig = RigA();
   Plant plant(rig);
-  PlantState y = PlantState::Zero();
-  y(kVx) = 0.05;
-  y(kVy) = -0.08;
-  y(kWx) = 0.1;
-  y(kSpin) = rig.spin_speed_rad_s;
+  const StateLayout& L = plant.layout();
+  PlantState y = plant.ZeroState();
+  y(L.vx(0)) = 0.05;
+  y(L.vy(0)) = -0.08;
+  y(L.vy(1)) = -0.1;  // theta_x' = 0.1: the y plane's slope is -theta_x
+  y(L.spin()) = rig.spin_speed_rad_s;
   PlantInput input;
   input.motor_on = false;  // coils at zero: no AMB
   double previous = plant.Energy(y);

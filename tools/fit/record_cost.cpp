@@ -264,6 +264,7 @@ SimulatedRecord RecordCost::Simulate(const ModelParams& params) const {
 }
 
 Eigen::VectorXd RecordCost::Residual(const SimulatedRecord& sim) const {
+  if (sim.values.size() != measurement_.channels.size()) return Unreached();
   Eigen::VectorXd r(static_cast<Eigen::Index>(size()));
   Eigen::Index i = 0;
   for (const Sample& s : samples_) {

@@ -289,6 +289,8 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
     const SettleResult settled =
         SettleClosedLoop(model, sim, &state, &*controller, &*controller_sensors, &input);
     if (settled.status != StepStatus::kOk) {
+      // Nothing of the record was reached: every row NaN, as after a run that stopped.
+      out.values.assign(m.channels.size(), std::vector<double>(r.time_s.size(), kNaN));
       out.status = settled.status;
       out.failure = settled.failure;
       return out;

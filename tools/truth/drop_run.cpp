@@ -5,6 +5,7 @@
 #include <deque>
 #include <numbers>
 
+#include "firmware_controller.hpp"
 #include "noise.hpp"
 #include "pid_axis.hpp"
 
@@ -42,56 +43,108 @@ double Quantised(double value, double q) {
 }  // namespace
 
 double ControlCurrentLimit(const AmbRig& a) {
+  if (a.permanent_magnet_bias) return std::min(a.bias_current_A, a.coil_current_limit_A);
   return std::min(a.bias_current_A, a.coil_current_limit_A - a.bias_current_A);
 }
 
-PlantState EquilibriumState(const Rig& rig, std::array<std::array<double, 2>, 2>* held_A) {
-  PlantState y = PlantState::Zero();
+std::array<std::array<double, 2>, 2> StaticAmbForces(const Rig& rig) {
+  // Sum of forces and sum of moments about the centre of mass zero, per axis.
   const double zc = rig.rotor.centre_of_mass_m;
-  // The set point: each sensor reads zero, so its plane sits at -offset/gain.
-  const double d1 = rig.sensors[0].position_m - zc;
-  const double d2 = rig.sensors[1].position_m - zc;
-  std::array<std::array<double, 2>, 2> at_sensor{};
-  for (int s = 0; s < 2; ++s) {
-    for (int axis = 0; axis < 2; ++axis) {
-      at_sensor[s][axis] = -rig.sensors[s].offset_m[axis] / rig.sensors[s].gain[axis];
-    }
-  }
-  y(kThy) = (at_sensor[0][0] - at_sensor[1][0]) / (d1 - d2);
-  y(kX) = at_sensor[0][0] - d1 * y(kThy);
-  y(kThx) = -(at_sensor[0][1] - at_sensor[1][1]) / (d1 - d2);
-  y(kY) = at_sensor[0][1] + d1 * y(kThx);
-  y(kSpin) = rig.spin_speed_rad_s;
-  for (int s = 0; s < 2; ++s) {
-    for (int axis = 0; axis < 2; ++axis) y(kLag + 2 * s + axis) = at_sensor[s][axis];
-  }
-  for (int t = 0; t < 2; ++t) {
-    // The ribbon holds the housing's weight.
-    if (rig.tdbs[t].dahl.enabled) {
-      y(kHousing + 6 * t + 5) = -rig.tdbs[t].dahl.housing_mass_kg * rig.gravity_m_s2;
-    }
-  }
-
-  // The static loads (weight, side pull) and the AMB forces that carry them: sum of forces
-  // and sum of moments about the centre of mass zero, per axis.
   std::array<double, 2> load{rig.side_pull.force_N[0],
                              rig.side_pull.force_N[1] - rig.rotor.mass_kg * rig.gravity_m_s2};
   std::array<double, 2> load_moment{(rig.side_pull.position_m - zc) * rig.side_pull.force_N[0],
                                     (rig.side_pull.position_m - zc) * rig.side_pull.force_N[1]};
   const double a1 = rig.ambs[0].position_m - zc;
   const double a2 = rig.ambs[1].position_m - zc;
-  Plant plant(rig);
+  std::array<std::array<double, 2>, 2> force{};
   for (int axis = 0; axis < 2; ++axis) {
-    const double f1 = (-load_moment[axis] + a2 * load[axis]) / (a1 - a2);
-    const double f2 = -load[axis] - f1;
-    const std::array<double, 2> force{f1, f2};
-    for (int a = 0; a < 2; ++a) {
+    force[0][axis] = (-load_moment[axis] + a2 * load[axis]) / (a1 - a2);
+    force[1][axis] = -load[axis] - force[0][axis];
+  }
+  return force;
+}
+
+PlantState EquilibriumState(const Rig& rig, std::array<std::array<double, 2>, 2>* held_A) {
+  const Plant plant(rig);
+  const StateLayout& L = plant.layout();
+  PlantState y = plant.ZeroState();
+  y(L.spin()) = rig.spin_speed_rad_s;
+  for (int t = 0; t < 2; ++t) {
+    // The ribbon holds the housing's weight.
+    if (rig.tdbs[t].dahl.enabled) {
+      y(L.housing(t) + 5) = -rig.tdbs[t].dahl.housing_mass_kg * rig.gravity_m_s2;
+    }
+  }
+  if (!rig.shaft.enabled) {
+    // The set point: each sensor reads zero, so its plane sits at -offset/gain. The rigid
+    // coordinates per plane are the displacement at the centre of mass and the slope.
+    const double zc = rig.rotor.centre_of_mass_m;
+    const double d1 = rig.sensors[0].position_m - zc;
+    const double d2 = rig.sensors[1].position_m - zc;
+    for (int axis = 0; axis < 2; ++axis) {
+      std::array<double, 2> at{};
+      for (int s = 0; s < 2; ++s) {
+        at[s] = -rig.sensors[s].offset_m[axis] / rig.sensors[s].gain[axis];
+        y(L.lag(s, axis)) = at[s];
+      }
+      const double slope = (at[0] - at[1]) / (d1 - d2);
+      const int q = axis == 0 ? L.qx(0) : L.qy(0);
+      y(q + 1) = slope;
+      y(q) = at[0] - d1 * slope;
+    }
+  }
+  // A flexible rotor starts centred and undeformed; its run settles it (acquisition.settle_s).
+  const auto force = StaticAmbForces(rig);
+  for (int a = 0; a < 2; ++a) {
+    for (int axis = 0; axis < 2; ++axis) {
       const double u = plant.AtStation(y, rig.ambs[a].position_m)[axis];
-      (*held_A)[a][axis] = CurrentForForce(rig.ambs[a], force[a], u);
+      (*held_A)[a][axis] = CurrentForForce(rig.ambs[a], force[a][axis], u);
+      y(L.coil(a, axis)) = (*held_A)[a][axis];
     }
   }
   return y;
 }
+
+namespace {
+
+/// The coil currents (plus, minus) and the control current of an AMB axis `since` seconds
+/// after its power failed, from the control current c0 it carried then.
+struct CoilCurrents {
+  double plus = 0.0, minus = 0.0, control = 0.0;
+};
+CoilCurrents AfterPowerLoss(const AmbRig& amb, const PowerLossRig& p, double c0, double since) {
+  const double i0 = amb.bias_current_A;
+  const auto ramp = [&](double c) {
+    return std::copysign(std::max(std::abs(c) - p.slew_rate_A_per_s * since, 0.0), c);
+  };
+  double scale = 1.0;
+  switch (p.form) {
+    case FluxDecayForm::kInstant:
+      scale = 0.0;
+      break;
+    case FluxDecayForm::kFormA:
+      scale = std::exp(-since / p.time_constant_s);
+      break;
+    case FluxDecayForm::kFormB:
+      // Force as exp(-t/tau): the currents fall at half that rate.
+      scale = since < p.hold_time_s
+                  ? 1.0
+                  : std::exp(-(since - p.hold_time_s) / (2.0 * p.time_constant_s));
+      break;
+    case FluxDecayForm::kRamp:
+      if (amb.permanent_magnet_bias) {
+        const double c = ramp(c0);
+        return {i0 + c, i0 - c, c};
+      } else {
+        const double plus = ramp(i0 + c0), minus = ramp(i0 - c0);
+        return {plus, minus, 0.5 * (plus - minus)};
+      }
+  }
+  if (amb.permanent_magnet_bias) return {i0 + c0 * scale, i0 - c0 * scale, c0 * scale};
+  return {(i0 + c0) * scale, (i0 - c0) * scale, c0 * scale};
+}
+
+}  // namespace
 
 RunResult RunDrop(const Rig& rig, std::uint64_t seed, const RunOptions& options) {
   const double h = rig.step_s;
@@ -102,20 +155,40 @@ RunResult RunDrop(const Rig& rig, std::uint64_t seed, const RunOptions& options)
   const long lag_delay = Steps(rig.acquisition.lag_delay_s, h);
   const long trigger = Steps(rig.acquisition.trigger_time_s, h);
   const bool lagged = rig.acquisition.lag_time_constant_s > 0.0;
+  const bool amplifier = rig.controller.amplifier.enabled;
+  // The settling runs whole controller and acquisition periods before the record's t = 0.
+  const long period = control_every * sample_every;
+  const long settle = (Steps(rig.acquisition.settle_s, h) + period - 1) / period * period;
 
   Plant plant(rig);
+  const StateLayout& L = plant.layout();
   std::array<std::array<double, 2>, 2> held_A{};
   PlantState y = EquilibriumState(rig, &held_A);
   if (!options.start_at_equilibrium) {
-    y.head<8>().setZero();
-    y.segment<4>(kLag).setZero();
+    y.head(4 * L.n).setZero();
+    for (int s = 0; s < 2; ++s) {
+      for (int axis = 0; axis < 2; ++axis) y(L.lag(s, axis)) = 0.0;
+    }
     held_A = {};
   }
 
+  // The firmware's feedforward: the current that carries the static load with the rotor
+  // centred, f = 4 k I0 i / g0^2 (seed 003 Eq. (2) at u = 0).
+  const auto static_force = StaticAmbForces(rig);
   std::array<std::array<PidAxis, 2>, 2> pid;
+  std::array<std::array<FirmwareAxis, 2>, 2> firmware;
   for (int a = 0; a < 2; ++a) {
+    const AmbRig& amb = rig.ambs[a];
     for (int axis = 0; axis < 2; ++axis) {
-      pid[a][axis] = PidAxis(rig.controller, ControlCurrentLimit(rig.ambs[a]), held_A[a][axis]);
+      if (rig.controller.firmware) {
+        const double ff = static_force[a][axis] * amb.nominal_gap_m * amb.nominal_gap_m /
+                          (4.0 * amb.electromagnet_constant_N_m2_per_A2 * amb.bias_current_A);
+        firmware[a][axis] = FirmwareAxis(rig.controller, ControlCurrentLimit(amb), ff);
+        if (options.start_at_equilibrium) held_A[a][axis] = ff;
+      } else {
+        pid[a][axis] = PidAxis(rig.controller, ControlCurrentLimit(amb), held_A[a][axis]);
+      }
+      y(L.coil(a, axis)) = held_A[a][axis];
     }
   }
   // Noise: one stream per channel, so adding a channel does not move the others.
@@ -135,16 +208,16 @@ RunResult RunDrop(const Rig& rig, std::uint64_t seed, const RunOptions& options)
   RunResult result;
   result.rows.reserve(static_cast<std::size_t>(total / sample_every + 1));
   PlantOutputs outputs;
-  PlantState rate;
+  PlantState rate = plant.ZeroState();
   PlantInput input;
-  for (long k = 0; k <= total; ++k) {
+  for (long k = -settle; k <= total; ++k) {
     const double t = static_cast<double>(k) * h;
     // The sensor signal now, and as the chain delivers it.
     std::array<std::array<double, 2>, 2> signal{};
     for (int s = 0; s < 2; ++s) {
       const auto disp = plant.AtStation(y, rig.sensors[s].position_m);
       for (int axis = 0; axis < 2; ++axis) {
-        signal[s][axis] = lagged ? y(kLag + 2 * s + axis) : disp[axis];
+        signal[s][axis] = lagged ? y(L.lag(s, axis)) : disp[axis];
       }
     }
     chain.push_back(signal);
@@ -163,11 +236,13 @@ RunResult RunDrop(const Rig& rig, std::uint64_t seed, const RunOptions& options)
       applied_A = pending.front().second;
       pending.pop_front();
     }
-    if (k % control_every == 0) {
+    if ((k + settle) % control_every == 0) {
       std::array<std::array<double, 2>, 2> command{};
       for (int a = 0; a < 2; ++a) {
         for (int axis = 0; axis < 2; ++axis) {
-          command[a][axis] = pid[a][axis].Update(reading(rig.ambs[a].sensor, axis, 2 * a + axis));
+          const double r = reading(rig.ambs[a].sensor, axis, 2 * a + axis);
+          command[a][axis] =
+              rig.controller.firmware ? firmware[a][axis].Update(r) : pid[a][axis].Update(r);
         }
       }
       if (compute_delay == 0) {
@@ -177,41 +252,37 @@ RunResult RunDrop(const Rig& rig, std::uint64_t seed, const RunOptions& options)
       }
     }
 
-    // Coil currents: the power-loss law after the trigger.
+    // Coil currents: the amplifier (or the command) while powered, the power-loss law after.
     const bool powered = k < trigger;
-    if (k == trigger) current_at_trigger = applied_A;
-    std::array<std::array<double, 2>, 2> coil_control{};
-    for (int a = 0; a < 2; ++a) {
-      const double i0 = rig.ambs[a].bias_current_A;
-      for (int axis = 0; axis < 2; ++axis) {
-        double scale = 1.0;
-        double control = applied_A[a][axis];
-        if (!powered) {
-          control = current_at_trigger[a][axis];
-          const double since = static_cast<double>(k - trigger) * h;
-          const PowerLossRig& p = rig.power_loss;
-          switch (p.form) {
-            case FluxDecayForm::kInstant:
-              scale = 0.0;
-              break;
-            case FluxDecayForm::kFormA:
-              scale = std::exp(-since / p.time_constant_s);
-              break;
-            case FluxDecayForm::kFormB:
-              // Force as exp(-t/tau): the currents fall at half that rate.
-              scale = since < p.hold_time_s
-                          ? 1.0
-                          : std::exp(-(since - p.hold_time_s) / (2.0 * p.time_constant_s));
-              break;
-          }
+    if (k == trigger) {
+      for (int a = 0; a < 2; ++a) {
+        for (int axis = 0; axis < 2; ++axis) {
+          current_at_trigger[a][axis] = amplifier ? y(L.coil(a, axis)) : applied_A[a][axis];
         }
-        input.coil_A[a][axis] = {(i0 + control) * scale, (i0 - control) * scale};
-        coil_control[a][axis] = control * scale;
+      }
+    }
+    std::array<std::array<double, 2>, 2> coil_control{};
+    input.amplifier_on = powered && amplifier;
+    input.command_A = applied_A;
+    for (int a = 0; a < 2; ++a) {
+      const AmbRig& amb = rig.ambs[a];
+      for (int axis = 0; axis < 2; ++axis) {
+        CoilCurrents c;
+        if (powered) {
+          c.control = amplifier ? y(L.coil(a, axis)) : applied_A[a][axis];
+          c.plus = amb.bias_current_A + c.control;
+          c.minus = amb.bias_current_A - c.control;
+        } else {
+          const double since = static_cast<double>(k - trigger) * h;
+          c = AfterPowerLoss(amb, rig.power_loss, current_at_trigger[a][axis], since);
+        }
+        input.coil_A[a][axis] = {c.plus, c.minus};
+        coil_control[a][axis] = c.control;
       }
     }
     input.motor_on = powered;
 
-    if (k % sample_every == 0) {
+    if (k >= 0 && k % sample_every == 0) {
       plant.Derivative(y, input, &rate, &outputs);
       RecordRow row;
       row.t_s = t;
@@ -225,7 +296,7 @@ RunResult RunDrop(const Rig& rig, std::uint64_t seed, const RunOptions& options)
       }
       for (int tdb = 0; tdb < 2; ++tdb) {
         row.race_speed_rad_s[tdb] =
-            y(kRace + tdb) + draw(12 + tdb, rig.acquisition.speed_noise_rpm / kRpmPerRadPerS);
+            y(L.race(tdb)) + draw(12 + tdb, rig.acquisition.speed_noise_rpm / kRpmPerRadPerS);
         row.normal_force_N[tdb] =
             outputs.tdb[tdb].normal_N + draw(15 + tdb, rig.acquisition.force_noise_N);
         // The load cell under the housing reads the contact's reaction (its tare removed).
@@ -234,12 +305,13 @@ RunResult RunDrop(const Rig& rig, std::uint64_t seed, const RunOptions& options)
         row.support_force_N[tdb][1] =
             -outputs.tdb[tdb].fy_N + draw(18 + 2 * tdb, rig.acquisition.force_noise_N);
       }
-      row.rotor_speed_rad_s = y(kSpin) + draw(14, rig.acquisition.speed_noise_rpm / kRpmPerRadPerS);
+      row.rotor_speed_rad_s =
+          y(L.spin()) + draw(14, rig.acquisition.speed_noise_rpm / kRpmPerRadPerS);
       result.rows.push_back(row);
     }
     if (k == total) break;
     plant.Step(&y, input);
-    if (options.on_step) options.on_step(t + h, y);
+    if (options.on_step && k >= 0) options.on_step(t + h, y);
     if (!y.allFinite()) {
       result.finite = false;
       break;

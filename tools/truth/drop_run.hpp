@@ -41,8 +41,13 @@ struct RunResult {
 
 RunResult RunDrop(const Rig& rig, std::uint64_t seed, const RunOptions& options = {});
 
-/// The control current limit of an AMB axis: both coils inside [0, coil limit].
+/// The control current limit of an AMB axis: both coils inside [0, coil limit]; with a
+/// magnet's bias the amplifier's control current within the limit and the bias.
 double ControlCurrentLimit(const AmbRig& a);
+
+/// The forces [amb][axis] (N) the AMBs exert when they carry the static load (weight, side
+/// pull) alone: sums of forces and moments about the centre of mass zero.
+std::array<std::array<double, 2>, 2> StaticAmbForces(const Rig& rig);
 
 /// The initial state at the static equilibrium (readings zero, static load carried) and the
 /// control current each AMB axis then holds.

@@ -15,55 +15,96 @@ double AmbAxisForce(const AmbRig& a, double coil_plus_A, double coil_minus_A, do
               coil_minus_A * coil_minus_A / ((g0 + u) * (g0 + u)));
 }
 
-Plant::Plant(const Rig& rig) : rig_(rig) {
-  k1_.setZero();
-  k2_.setZero();
-  k3_.setZero();
-  k4_.setZero();
-  stage_.setZero();
+namespace {
+
+std::vector<double> Stations(const Rig& r) {
+  std::vector<double> z;
+  for (const AmbRig& a : r.ambs) z.push_back(a.position_m);
+  for (const SensorRig& s : r.sensors) z.push_back(s.position_m);
+  for (const TdbRig& t : r.tdbs) z.push_back(t.position_m);
+  return z;
+}
+
+RotorModes ModesOf(const Rig& r) {
+  return r.shaft.enabled ? FlexibleRotorModes(r.shaft, Stations(r)) : RigidRotorModes(r.rotor);
+}
+
+}  // namespace
+
+Plant::Plant(const Rig& rig) : rig_(rig), modes_(ModesOf(rig)) {
+  layout_.n = modes_.n;
+  std::vector<double> z = Stations(rig);
+  z.push_back(rig.rotor.centre_of_mass_m);
+  z.push_back(rig.side_pull.position_m);
+  z.push_back(rig.unbalance.couple_planes_m[0]);
+  z.push_back(rig.unbalance.couple_planes_m[1]);
+  for (double station : z) shapes_.emplace_back(station, modes_.AtStation(station));
+  for (PlantState* v : {&k1_, &k2_, &k3_, &k4_, &stage_}) *v = ZeroState();
+  for (Eigen::VectorXd* v : {&fx_, &fy_, &ax_, &ay_}) *v = Eigen::VectorXd::Zero(modes_.n);
+}
+
+const Eigen::RowVectorXd& Plant::Shape(double z_m) const {
+  for (const auto& [z, phi] : shapes_) {
+    if (z == z_m) return phi;
+  }
+  // Only a station the rig does not list gets here (tests); computed once, kept.
+  const_cast<Plant*>(this)->shapes_.emplace_back(z_m, modes_.AtStation(z_m));
+  return shapes_.back().second;
 }
 
 std::array<double, 2> Plant::AtStation(const PlantState& y, double z_m) const {
-  const double d = z_m - rig_.rotor.centre_of_mass_m;
-  return {y(kX) + d * y(kThy), y(kY) - d * y(kThx)};
+  const Eigen::RowVectorXd& phi = Shape(z_m);
+  const int n = layout_.n;
+  return {phi.dot(y.segment(layout_.qx(0), n)), phi.dot(y.segment(layout_.qy(0), n))};
 }
 
 std::array<double, 2> Plant::VelocityAtStation(const PlantState& y, double z_m) const {
-  const double d = z_m - rig_.rotor.centre_of_mass_m;
-  return {y(kVx) + d * y(kWy), y(kVy) - d * y(kWx)};
+  const Eigen::RowVectorXd& phi = Shape(z_m);
+  const int n = layout_.n;
+  return {phi.dot(y.segment(layout_.vx(0), n)), phi.dot(y.segment(layout_.vy(0), n))};
 }
 
 void Plant::Derivative(const PlantState& y, const PlantInput& in, PlantState* rate,
                        PlantOutputs* out) const {
   const Rig& r = rig_;
-  const double zc = r.rotor.centre_of_mass_m;
-  rate->setZero();
-  double fx = 0.0, fy = 0.0, mx = 0.0, my = 0.0;
+  const StateLayout& L = layout_;
+  const int n = L.n;
+  rate->setZero(layout_.size());
+  fx_.setZero();
+  fy_.setZero();
   const auto apply = [&](double z, double f_x, double f_y) {
-    const double d = z - zc;
-    fx += f_x;
-    fy += f_y;
-    mx += -d * f_y;
-    my += d * f_x;
+    const Eigen::RowVectorXd& phi = Shape(z);
+    fx_ += f_x * phi.transpose();
+    fy_ += f_y * phi.transpose();
   };
 
-  // AMBs: seed 003 Eq. (2) per axis.
+  // AMBs: seed 003 Eq. (2) per axis; the amplifier's current loop while it is powered.
+  const double w_amp = 2.0 * std::numbers::pi * r.controller.amplifier.bandwidth_Hz;
+  const double slew = r.controller.amplifier.slew_rate_A_per_s;
   for (int a = 0; a < 2; ++a) {
     const AmbRig& amb = r.ambs[a];
     const auto u = AtStation(y, amb.position_m);
     for (int axis = 0; axis < 2; ++axis) {
-      out->amb_force_N[a][axis] =
-          AmbAxisForce(amb, in.coil_A[a][axis][0], in.coil_A[a][axis][1], u[axis]);
+      double plus = in.coil_A[a][axis][0], minus = in.coil_A[a][axis][1];
+      if (in.amplifier_on) {
+        const double i = y(L.coil(a, axis));
+        plus = amb.bias_current_A + i;
+        minus = amb.bias_current_A - i;
+        double di = w_amp * (in.command_A[a][axis] - i);
+        if (slew > 0.0) di = std::clamp(di, -slew, slew);
+        (*rate)(L.coil(a, axis)) = di;
+      }
+      out->amb_force_N[a][axis] = AmbAxisForce(amb, plus, minus, u[axis]);
     }
     apply(amb.position_m, out->amb_force_N[a][0], out->amb_force_N[a][1]);
   }
 
   // TDBs: the journal relative to the TDB centre (misalignment plus the housing's deflection).
-  const double spin = y(kSpin);
+  const double spin = y(L.spin());
   double spin_torque = 0.0;
   for (int t = 0; t < 2; ++t) {
     const TdbRig& tdb = r.tdbs[t];
-    const int h = kHousing + 6 * t;
+    const int h = L.housing(t);
     const auto p = AtStation(y, tdb.position_m);
     const auto v = VelocityAtStation(y, tdb.position_m);
     JournalAtTdb j;
@@ -72,11 +113,11 @@ void Plant::Derivative(const PlantState& y, const PlantInput& in, PlantState* ra
     j.vx_m_s = v[0] - y(h + 2);
     j.vy_m_s = v[1] - y(h + 3);
     j.spin_rad_s = spin;
-    const ContactForces c = EvaluateContact(tdb, j, y(kRace + t));
+    const ContactForces c = EvaluateContact(tdb, j, y(L.race(t)));
     out->tdb[t] = c;
     apply(tdb.position_m, c.fx_N, c.fy_N);
     spin_torque += c.spin_torque_N_m;
-    (*rate)(kRace + t) = c.race_acceleration_rad_s2;
+    (*rate)(L.race(t)) = c.race_acceleration_rad_s2;
     if (tdb.dahl.enabled) {
       // The housing takes the contact's reaction, its weight and the ribbon (Jarroux 2019
       // Eq. (1)-(3)) per axis.
@@ -89,13 +130,19 @@ void Plant::Derivative(const PlantState& y, const PlantInput& in, PlantState* ra
       (*rate)(h + 5) = DahlForceRate(d, y(h + 5), y(h + 1), y(h + 3));
     }
   }
-  const double spin_rate = in.motor_on ? 0.0 : spin_torque / r.rotor.polar_inertia_kg_m2;
-  (*rate)(kSpinAngle) = spin;
-  (*rate)(kSpin) = spin_rate;
+  double spin_rate = 0.0;
+  if (!in.motor_on) {
+    const CoastDownRig& cd = r.coast_down;
+    const double loss = cd.viscous_N_m_s * spin + cd.windage_N_m_s2 * spin * std::abs(spin);
+    spin_rate = (spin_torque - loss) / r.rotor.polar_inertia_kg_m2;
+  }
+  (*rate)(L.spin_angle()) = spin;
+  (*rate)(L.spin()) = spin_rate;
 
   // Unbalance: static at the centre of mass, couple in two planes half a turn apart.
+  const double zc = r.rotor.centre_of_mass_m;
   const auto unbalance = [&](double me, double phase, double z) {
-    const double angle = y(kSpinAngle) + phase;
+    const double angle = y(L.spin_angle()) + phase;
     const double c = std::cos(angle), s = std::sin(angle);
     apply(z, me * (spin * spin * c + spin_rate * s), me * (spin * spin * s - spin_rate * c));
   };
@@ -105,20 +152,27 @@ void Plant::Derivative(const PlantState& y, const PlantInput& in, PlantState* ra
     unbalance(u.couple_kg_m, u.couple_phase_rad, u.couple_planes_m[0]);
     unbalance(u.couple_kg_m, u.couple_phase_rad + std::numbers::pi, u.couple_planes_m[1]);
   }
-  apply(r.side_pull.position_m, r.side_pull.force_N[0], r.side_pull.force_N[1]);
+  if (r.side_pull.force_N[0] != 0.0 || r.side_pull.force_N[1] != 0.0) {
+    apply(r.side_pull.position_m, r.side_pull.force_N[0], r.side_pull.force_N[1]);
+  }
 
-  // Rigid rotor with gyroscopic moments.
-  const double m = r.rotor.mass_kg;
-  const double it = r.rotor.transverse_inertia_kg_m2;
-  const double ip = r.rotor.polar_inertia_kg_m2;
-  (*rate)(kX) = y(kVx);
-  (*rate)(kY) = y(kVy);
-  (*rate)(kThx) = y(kWx);
-  (*rate)(kThy) = y(kWy);
-  (*rate)(kVx) = fx / m;
-  (*rate)(kVy) = fy / m - r.gravity_m_s2;
-  (*rate)(kWx) = (mx - ip * (spin_rate * y(kThy) + spin * y(kWy))) / it;
-  (*rate)(kWy) = (my + ip * (spin_rate * y(kThx) + spin * y(kWx))) / it;
+  // The rotor in its two planes (rotor_modes.hpp).
+  const RotorModes& m = modes_;
+  const auto qx = y.segment(L.qx(0), n), qy = y.segment(L.qy(0), n);
+  const auto vx = y.segment(L.vx(0), n), vy = y.segment(L.vy(0), n);
+  fx_.noalias() -= m.damping * vx;
+  fx_.noalias() -= m.stiffness * qx;
+  fx_.noalias() -= m.gyroscopic * (spin * vy + spin_rate * qy);
+  fy_.noalias() -= m.damping * vy;
+  fy_.noalias() -= m.stiffness * qy;
+  fy_.noalias() += m.gyroscopic * (spin * vx + spin_rate * qx);
+  fy_ -= r.gravity_m_s2 * m.weight_share;
+  ax_.noalias() = m.mass_inverse * fx_;
+  ay_.noalias() = m.mass_inverse * fy_;
+  rate->segment(L.qx(0), n) = vx;
+  rate->segment(L.qy(0), n) = vy;
+  rate->segment(L.vx(0), n) = ax_;
+  rate->segment(L.vy(0), n) = ay_;
 
   // The acquisition chain's first-order low-pass on every sensor axis.
   const double tau = r.acquisition.lag_time_constant_s;
@@ -127,7 +181,7 @@ void Plant::Derivative(const PlantState& y, const PlantInput& in, PlantState* ra
     out->sensor_displacement_m[s] = disp;
     if (tau > 0.0) {
       for (int axis = 0; axis < 2; ++axis) {
-        (*rate)(kLag + 2 * s + axis) = (disp[axis] - y(kLag + 2 * s + axis)) / tau;
+        (*rate)(L.lag(s, axis)) = (disp[axis] - y(L.lag(s, axis))) / tau;
       }
     }
   }
@@ -147,13 +201,18 @@ void Plant::Step(PlantState* y, const PlantInput& in) const {
 
 double Plant::Energy(const PlantState& y) const {
   const Rig& r = rig_;
-  double e = 0.5 * r.rotor.mass_kg * (y(kVx) * y(kVx) + y(kVy) * y(kVy)) +
-             0.5 * r.rotor.transverse_inertia_kg_m2 * (y(kWx) * y(kWx) + y(kWy) * y(kWy)) +
-             0.5 * r.rotor.polar_inertia_kg_m2 * y(kSpin) * y(kSpin) +
-             r.rotor.mass_kg * r.gravity_m_s2 * y(kY);
+  const StateLayout& L = layout_;
+  const int n = L.n;
+  const auto qx = y.segment(L.qx(0), n), qy = y.segment(L.qy(0), n);
+  const auto vx = y.segment(L.vx(0), n), vy = y.segment(L.vy(0), n);
+  const RotorModes& m = modes_;
+  double e = 0.5 * (vx.dot(m.mass * vx) + vy.dot(m.mass * vy)) +
+             0.5 * (qx.dot(m.stiffness * qx) + qy.dot(m.stiffness * qy)) +
+             0.5 * r.rotor.polar_inertia_kg_m2 * y(L.spin()) * y(L.spin()) +
+             r.gravity_m_s2 * m.weight_share.dot(qy);
   for (int t = 0; t < 2; ++t) {
     const TdbRig& tdb = r.tdbs[t];
-    e += 0.5 * tdb.race_inertia_kg_m2 * y(kRace + t) * y(kRace + t);
+    e += 0.5 * tdb.race_inertia_kg_m2 * y(L.race(t)) * y(L.race(t));
     const auto p = AtStation(y, tdb.position_m);
     const double dx = p[0] - tdb.misalignment_m[0];
     const double dy = p[1] - tdb.misalignment_m[1];

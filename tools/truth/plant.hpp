@@ -1,40 +1,56 @@
 #pragma once
-// The rigid rotor, its AMBs and TDBs as one first-order system y' = f(y, input), integrated by
-// classical RK4 at the rig's fine step (contact events are resolved by the step alone).
+// The rotor (rigid or flexible, rotor_modes.hpp), its AMBs and TDBs as one first-order system
+// y' = f(y, input), integrated by classical RK4 at the rig's fine step (contact events are
+// resolved by the step alone).
 //
-// Rotor (rigid, 4 lateral DOF plus spin; frame of rig.hpp): at station offset d = z - z_cm the
-// lateral displacement is (x + d thy, y - d thx); a force (Fx, Fy) there gives the moments
-// (Mx, My) = (-d Fy, d Fx). With H = (It thx' + Ip W thy, It thy' - Ip W thx, Ip W):
-//   m x'' = Fx,  m y'' = Fy - m g,
-//   It thx'' = Mx - Ip (W' thy + W thy'),  It thy'' = My + Ip (W' thx + W thx')
-// (the rigid-rotor limit of Jarroux 2019 Eq. (13)); the motor holds W until the power fails,
-// then Ip W' = sum of the TDBs' friction torques.
+// Rotor: rotor_modes.hpp's equations in each bending plane; the motor holds W until the power
+// fails, then Ip W' = sum of the TDBs' friction torques - (c1 W + c2 W |W|) (coast-down).
 // AMB axis: seed 003 Eq. (2), f = k ((I0 + i)^2 / (g0 - u)^2 - (I0 - i)^2 / (g0 + u)^2), here
-// with the two coil currents given directly (the power-loss laws scale them).
+// with the two coil currents given directly (the power-loss laws scale them); while the
+// amplifier is powered its coil control current is a state, i' = w (c - i) within the slew
+// rate (a first-order current loop).
 // Unbalance (m e at phase p, spin angle phi): m e (W^2 cos a + W' sin a, W^2 sin a - W' cos a),
 // a = phi + p.
 #include <array>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
 #include "rig.hpp"
+#include "rotor_modes.hpp"
 #include "tdb_contact.hpp"
 
 namespace ambdrop_truth {
 
-/// State indices.
-inline constexpr int kX = 0, kY = 1, kThx = 2, kThy = 3, kVx = 4, kVy = 5, kWx = 6, kWy = 7;
-inline constexpr int kSpinAngle = 8, kSpin = 9;
-inline constexpr int kRace = 10;     ///< + TDB index: race speed (rad/s)
-inline constexpr int kLag = 12;      ///< + 2 sensor + axis: the low-passed displacement (m)
-inline constexpr int kHousing = 16;  ///< + 6 TDB: ux, uy, vx, vy, Dahl fx, Dahl fy
-inline constexpr int kStateSize = 28;
-using PlantState = Eigen::Matrix<double, kStateSize, 1>;
+/// Where each part of the state sits, for n rotor coordinates per plane.
+struct StateLayout {
+  int n = 2;
+  int qx(int i) const { return i; }
+  int qy(int i) const { return n + i; }
+  int vx(int i) const { return 2 * n + i; }
+  int vy(int i) const { return 3 * n + i; }
+  int spin_angle() const { return 4 * n; }
+  int spin() const { return 4 * n + 1; }
+  int race(int tdb) const { return 4 * n + 2 + tdb; }
+  /// The low-passed displacement (m) of a sensor axis.
+  int lag(int sensor, int axis) const { return 4 * n + 4 + 2 * sensor + axis; }
+  /// + 0..5: ux, uy, vx, vy, Dahl fx, Dahl fy of a TDB's housing.
+  int housing(int tdb) const { return 4 * n + 8 + 6 * tdb; }
+  /// The coil control current (A) an amplifier drives.
+  int coil(int amb, int axis) const { return 4 * n + 20 + 2 * amb + axis; }
+  int size() const { return 4 * n + 24; }
+};
+using PlantState = Eigen::VectorXd;
 
 /// Held over a step: each AMB axis's two coil currents (A; [.][.][0] pulls towards +u) and the
 /// motor (on: the spin is held).
+/// With `amplifier_on` the coils carry I0 +- the amplifier's state and `command_A` drives it;
+/// otherwise they carry `coil_A`.
 struct PlantInput {
   std::array<std::array<std::array<double, 2>, 2>, 2> coil_A{};
+  std::array<std::array<double, 2>, 2> command_A{};
+  bool amplifier_on = false;
   bool motor_on = true;
 };
 
@@ -49,6 +65,10 @@ class Plant {
  public:
   explicit Plant(const Rig& rig);
   const Rig& rig() const { return rig_; }
+  const StateLayout& layout() const { return layout_; }
+  const RotorModes& modes() const { return modes_; }
+  /// A zero state of the right size.
+  PlantState ZeroState() const { return PlantState::Zero(layout_.size()); }
 
   void Derivative(const PlantState& y, const PlantInput& in, PlantState* rate,
                   PlantOutputs* out) const;
@@ -58,13 +78,19 @@ class Plant {
   std::array<double, 2> AtStation(const PlantState& y, double z_m) const;
   std::array<double, 2> VelocityAtStation(const PlantState& y, double z_m) const;
 
-  /// Total mechanical energy (J): kinetic (rotor, races, housings), gravity's potential, the
-  /// linear contacts' springs. Used by the energy test (no AMB, no Dahl).
+  /// Total mechanical energy (J): kinetic (rotor, races), the shaft's strain, gravity's
+  /// potential, the linear contacts' springs. Used by the energy test (no AMB, no Dahl).
   double Energy(const PlantState& y) const;
 
  private:
+  const Eigen::RowVectorXd& Shape(double z_m) const;
+
   Rig rig_;
+  RotorModes modes_;
+  StateLayout layout_;
+  std::vector<std::pair<double, Eigen::RowVectorXd>> shapes_;  ///< per station, cached
   mutable PlantState k1_, k2_, k3_, k4_, stage_;
+  mutable Eigen::VectorXd fx_, fy_, ax_, ay_;
   mutable PlantOutputs scratch_{};
 };
 

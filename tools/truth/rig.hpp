@@ -6,9 +6,36 @@
 // Frame: z along the rotor from the non-drive end, y vertical up, x horizontal.
 #include <array>
 #include <string>
+#include <vector>
 
 namespace ambdrop_truth {
 
+/// A flexible shaft: Rayleigh beam elements (translational and rotary inertia, the shaft's
+/// gyroscopic moment; no shear) plus rigid discs, reduced to its first free-free modes.
+struct ShaftSegmentRig {
+  double length_m = 0.0;
+  double outer_diameter_m = 0.0;
+  double inner_diameter_m = 0.0;
+  int elements = 1;
+};
+struct DiscRig {
+  double position_m = 0.0;
+  double mass_kg = 0.0;
+  double transverse_inertia_kg_m2 = 0.0;  ///< about its own centre
+  double polar_inertia_kg_m2 = 0.0;
+};
+struct FlexibleShaftRig {
+  bool enabled = false;  ///< false: the rotor is rigid (RotorRig's numbers)
+  double start_m = 0.0;  ///< station of the shaft's first end
+  double youngs_modulus_Pa = 0.0;
+  double density_kg_m3 = 0.0;
+  std::vector<ShaftSegmentRig> segments;
+  std::vector<DiscRig> discs;
+  int bending_modes = 0;             ///< kept per plane beside the two rigid-body modes
+  double modal_damping_ratio = 0.0;  ///< on the bending modes
+};
+
+/// For a flexible rotor these are derived from the shaft and discs (rig_reader.cpp).
 struct RotorRig {
   double mass_kg = 0.0;
   double transverse_inertia_kg_m2 = 0.0;  ///< about the centre of mass
@@ -25,6 +52,10 @@ struct AmbRig {
   double bias_current_A = 0.0;
   double coil_current_limit_A = 0.0;  ///< each coil's current stays in [0, limit]
   int sensor = 0;                     ///< index of the sensor plane its PID reads
+  /// A permanent magnet makes the bias flux: bias_current_A is its equivalent current, which
+  /// stays after power loss; the amplifier carries the control current alone, |i| <=
+  /// min(I0, coil_current_limit_A). False: the amplifiers make the bias (coils in [0, limit]).
+  bool permanent_magnet_bias = false;
 };
 
 /// A displacement-sensor plane. gain and offset are the sensor's errors (1 and 0 when true).
@@ -35,9 +66,33 @@ struct SensorRig {
   std::array<double, 2> offset_m{0.0, 0.0};
 };
 
+/// One section of a firmware controller, in s: a PD with a filtered derivative
+/// kp + kd s/(1 + tau s), a lead (1 + s/wz)/(1 + s/wp), or a notch
+/// (s^2 + 2 zz w s + w^2)/(s^2 + 2 zp w s + w^2). Discretised by Tustin, prewarped at
+/// prewarp_Hz when given (firmware_controller.hpp).
+struct FirmwareSectionRig {
+  enum class Kind { kPd, kLead, kNotch } kind = Kind::kPd;
+  double kp = 0.0, kd_s = 0.0, derivative_filter_s = 0.0;
+  double zero_Hz = 0.0, pole_Hz = 0.0;
+  double frequency_Hz = 0.0, pole_damping = 0.0, zero_damping = 0.0;
+  double prewarp_Hz = 0.0;
+};
+
+/// The coil current loop between the command and the coil (continuous, as the analogue loop
+/// is): i' = w (c - i), |i'| <= slew rate. Disabled: the coil carries the command.
+struct AmplifierRig {
+  bool enabled = false;
+  double bandwidth_Hz = 0.0;
+  double slew_rate_A_per_s = 0.0;  ///< 0: none
+};
+
 /// A PID per AMB axis (seed 003's structure, kp + ki/s + kd s/(1 + tau_d s)), run at rate_Hz,
-/// its command applied computation_delay_s after the sample it was computed from.
+/// its command applied computation_delay_s after the sample it was computed from. Or, with
+/// `firmware`, a cascade of sections and a gravity feedforward (no integral).
 struct ControllerRig {
+  bool firmware = false;
+  std::vector<FirmwareSectionRig> sections;
+  AmplifierRig amplifier;
   double rate_Hz = 0.0;
   double computation_delay_s = 0.0;
   double sensor_gain_V_per_m = 0.0;
@@ -95,16 +150,28 @@ struct AcquisitionRig {
   /// low-pass then a pure delay (both 0: none). The controller reads through it too.
   double lag_time_constant_s = 0.0;
   double lag_delay_s = 0.0;
+  /// The closed loop runs this long before the record starts (a machine levitated for a
+  /// while); 0: the record starts at the computed equilibrium.
+  double settle_s = 0.0;
 };
 
 /// How the AMB forces go when the power fails. kInstant: at once. kFormA: bias and control
 /// flux fade together, currents as exp(-t/tau), force as exp(-2t/tau). kFormB: the currents
 /// (and so the force law) are held for hold_time_s, then the force falls as exp(-t/tau).
-enum class FluxDecayForm { kInstant, kFormA, kFormB };
+/// kRamp: the DC link collapses and each coil's control current falls to zero at
+/// slew_rate_A_per_s (a permanent magnet's bias stays; an electromagnet bias ramps too).
+enum class FluxDecayForm { kInstant, kFormA, kFormB, kRamp };
 struct PowerLossRig {
   FluxDecayForm form = FluxDecayForm::kInstant;
   double time_constant_s = 0.0;
   double hold_time_s = 0.0;
+  double slew_rate_A_per_s = 0.0;
+};
+
+/// Torques that slow the rotor once its motor stops: -(c1 W + c2 W |W|).
+struct CoastDownRig {
+  double viscous_N_m_s = 0.0;
+  double windage_N_m_s2 = 0.0;
 };
 
 /// Unbalance: a static one at the centre of mass and a couple (equal and opposite masses in
@@ -130,6 +197,8 @@ struct Rig {
   double gravity_m_s2 = 9.81;
   double step_s = 1e-6;  ///< the generator's own integration step
   RotorRig rotor;
+  FlexibleShaftRig shaft;
+  CoastDownRig coast_down;
   std::array<AmbRig, 2> ambs;
   std::array<SensorRig, 2> sensors;
   ControllerRig controller;

@@ -4,6 +4,7 @@
 
 #include "json_reader.hpp"
 #include "rig.hpp"
+#include "rotor_modes.hpp"
 
 namespace ambdrop_truth {
 
@@ -51,6 +52,60 @@ TdbRig ReadTdb(const JsonValue& t) {
   return tdb;
 }
 
+FlexibleShaftRig ReadShaft(const JsonValue& j) {
+  FlexibleShaftRig shaft;
+  shaft.enabled = true;
+  shaft.start_m = j.Number("start_m", 0.0);
+  shaft.youngs_modulus_Pa = j.Number("youngs_modulus_Pa");
+  shaft.density_kg_m3 = j.Number("density_kg_m3");
+  shaft.bending_modes = static_cast<int>(j.Number("bending_modes"));
+  shaft.modal_damping_ratio = j.Number("modal_damping_ratio", 0.0);
+  for (const JsonValue& s : j.At("segments").Items()) {
+    ShaftSegmentRig seg;
+    seg.length_m = s.Number("length_m");
+    seg.outer_diameter_m = s.Number("outer_diameter_m");
+    seg.inner_diameter_m = s.Number("inner_diameter_m", 0.0);
+    const double elements = s.Number("elements");
+    if (!(elements >= 1.0 && elements <= 200.0) || elements != std::floor(elements)) {
+      throw std::runtime_error(s.At("elements").path() + ": expected a whole number 1..200");
+    }
+    seg.elements = static_cast<int>(elements);
+    shaft.segments.push_back(seg);
+  }
+  if (const JsonValue* discs = j.Find("discs")) {
+    for (const JsonValue& d : discs->Items()) {
+      shaft.discs.push_back({d.Number("position_m"), d.Number("mass_kg"),
+                             d.Number("transverse_inertia_kg_m2"),
+                             d.Number("polar_inertia_kg_m2")});
+    }
+  }
+  return shaft;
+}
+
+FirmwareSectionRig ReadSection(const JsonValue& s) {
+  FirmwareSectionRig f;
+  const std::string kind = s.String("kind");
+  f.prewarp_Hz = s.Number("prewarp_Hz", 0.0);
+  if (kind == "pd") {
+    f.kind = FirmwareSectionRig::Kind::kPd;
+    f.kp = s.Number("kp");
+    f.kd_s = s.Number("kd_s");
+    f.derivative_filter_s = s.Number("derivative_filter_s");
+  } else if (kind == "lead") {
+    f.kind = FirmwareSectionRig::Kind::kLead;
+    f.zero_Hz = s.Number("zero_Hz");
+    f.pole_Hz = s.Number("pole_Hz");
+  } else if (kind == "notch") {
+    f.kind = FirmwareSectionRig::Kind::kNotch;
+    f.frequency_Hz = s.Number("frequency_Hz");
+    f.pole_damping = s.Number("pole_damping");
+    f.zero_damping = s.Number("zero_damping", 0.0);
+  } else {
+    throw std::runtime_error(s.At("kind").path() + ": expected \"pd\", \"lead\" or \"notch\"");
+  }
+  return f;
+}
+
 void Positive(double value, const std::string& what) {
   if (!(value > 0.0) || !std::isfinite(value)) {
     throw std::runtime_error(what + ": expected a positive number, found " + std::to_string(value));
@@ -68,10 +123,19 @@ Rig ReadRig(const std::string& path) {
   rig.step_s = root.Number("integration_step_s", 1e-6);
 
   const JsonValue& rotor = root.At("rotor");
-  rig.rotor.mass_kg = rotor.Number("mass_kg");
-  rig.rotor.transverse_inertia_kg_m2 = rotor.Number("transverse_inertia_kg_m2");
-  rig.rotor.polar_inertia_kg_m2 = rotor.Number("polar_inertia_kg_m2");
-  rig.rotor.centre_of_mass_m = rotor.Number("centre_of_mass_m");
+  if (const JsonValue* shaft = rotor.Find("shaft")) {
+    rig.shaft = ReadShaft(*shaft);
+    rig.rotor = ShaftInertia(rig.shaft);
+  } else {
+    rig.rotor.mass_kg = rotor.Number("mass_kg");
+    rig.rotor.transverse_inertia_kg_m2 = rotor.Number("transverse_inertia_kg_m2");
+    rig.rotor.polar_inertia_kg_m2 = rotor.Number("polar_inertia_kg_m2");
+    rig.rotor.centre_of_mass_m = rotor.Number("centre_of_mass_m");
+  }
+  if (const JsonValue* cd = root.Find("coast_down")) {
+    rig.coast_down.viscous_N_m_s = cd->Number("viscous_N_m_s", 0.0);
+    rig.coast_down.windage_N_m_s2 = cd->Number("windage_N_m_s2", 0.0);
+  }
 
   const auto& sensors = root.At("sensors").Items();
   const auto& ambs = root.At("ambs").Items();
@@ -92,6 +156,12 @@ Rig ReadRig(const std::string& path) {
     a.bias_current_A = ambs[i].Number("bias_current_A");
     a.coil_current_limit_A = ambs[i].Number("coil_current_limit_A");
     a.sensor = SensorIndex(ambs[i], rig.sensors);
+    const std::string bias = ambs[i].String("bias", "electromagnet");
+    if (bias != "electromagnet" && bias != "permanent_magnet") {
+      throw std::runtime_error(ambs[i].At("bias").path() +
+                               ": expected \"electromagnet\" or \"permanent_magnet\"");
+    }
+    a.permanent_magnet_bias = bias == "permanent_magnet";
     rig.tdbs[i] = ReadTdb(tdbs[i]);
   }
 
@@ -100,10 +170,25 @@ Rig ReadRig(const std::string& path) {
   rig.controller.computation_delay_s = c.Number("computation_delay_s");
   rig.controller.sensor_gain_V_per_m = c.Number("sensor_gain_V_per_m");
   rig.controller.amplifier_gain_A_per_V = c.Number("amplifier_gain_A_per_V");
-  rig.controller.kp = c.Number("kp");
-  rig.controller.ki_per_s = c.Number("ki_per_s");
-  rig.controller.kd_s = c.Number("kd_s");
-  rig.controller.derivative_filter_s = c.Number("derivative_filter_s");
+  const std::string form = c.String("form", "pid");
+  if (form == "firmware") {
+    rig.controller.firmware = true;
+    for (const JsonValue& s : c.At("sections").Items()) {
+      rig.controller.sections.push_back(ReadSection(s));
+    }
+  } else if (form == "pid") {
+    rig.controller.kp = c.Number("kp");
+    rig.controller.ki_per_s = c.Number("ki_per_s");
+    rig.controller.kd_s = c.Number("kd_s");
+    rig.controller.derivative_filter_s = c.Number("derivative_filter_s");
+  } else {
+    throw std::runtime_error(c.At("form").path() + ": expected \"pid\" or \"firmware\"");
+  }
+  if (const JsonValue* amp = c.Find("amplifier")) {
+    rig.controller.amplifier.enabled = true;
+    rig.controller.amplifier.bandwidth_Hz = amp->Number("bandwidth_Hz");
+    rig.controller.amplifier.slew_rate_A_per_s = amp->Number("slew_rate_A_per_s", 0.0);
+  }
 
   const JsonValue& q = root.At("acquisition");
   rig.acquisition.sample_rate_Hz = q.Number("sample_rate_Hz");
@@ -114,6 +199,7 @@ Rig ReadRig(const std::string& path) {
   rig.acquisition.current_noise_A = q.Number("current_noise_sigma_A", 0.0);
   rig.acquisition.speed_noise_rpm = q.Number("speed_noise_sigma_rpm", 0.0);
   rig.acquisition.force_noise_N = q.Number("force_noise_sigma_N", 0.0);
+  rig.acquisition.settle_s = q.Number("settle_s", 0.0);
 
   if (const JsonValue* p = root.Find("power_loss")) {
     const std::string form = p->String("form");
@@ -126,8 +212,12 @@ Rig ReadRig(const std::string& path) {
       rig.power_loss.form = FluxDecayForm::kFormB;
       rig.power_loss.time_constant_s = p->Number("time_constant_s");
       rig.power_loss.hold_time_s = p->Number("hold_time_s");
+    } else if (form == "ramp") {
+      rig.power_loss.form = FluxDecayForm::kRamp;
+      rig.power_loss.slew_rate_A_per_s = p->Number("slew_rate_A_per_s");
     } else {
-      throw std::runtime_error(p->At("form").path() + ": expected \"instant\", \"a\" or \"b\"");
+      throw std::runtime_error(p->At("form").path() +
+                               ": expected \"instant\", \"a\", \"b\" or \"ramp\"");
     }
   }
   CheckRig(rig);
@@ -140,10 +230,13 @@ void CheckRig(const Rig& rig) {
   Positive(rig.rotor.transverse_inertia_kg_m2, "rotor.transverse_inertia_kg_m2");
   Positive(rig.rotor.polar_inertia_kg_m2, "rotor.polar_inertia_kg_m2");
   for (const AmbRig& a : rig.ambs) {
+    if (a.permanent_magnet_bias) Positive(a.coil_current_limit_A, "amb " + a.name + " limit");
+  }
+  for (const AmbRig& a : rig.ambs) {
     Positive(a.electromagnet_constant_N_m2_per_A2, "amb " + a.name + " electromagnet constant");
     Positive(a.nominal_gap_m, "amb " + a.name + " nominal_gap_m");
     Positive(a.bias_current_A, "amb " + a.name + " bias_current_A");
-    if (!(a.coil_current_limit_A > a.bias_current_A)) {
+    if (!a.permanent_magnet_bias && !(a.coil_current_limit_A > a.bias_current_A)) {
       throw std::runtime_error("amb " + a.name + ": coil_current_limit_A must exceed the bias");
     }
   }
@@ -163,8 +256,21 @@ void CheckRig(const Rig& rig) {
       rig.controller.computation_delay_s > 4.0 / rig.controller.rate_Hz + 1e-12) {
     throw std::runtime_error("controller.computation_delay_s: expected 0 to four periods");
   }
-  if (rig.power_loss.form != FluxDecayForm::kInstant) {
+  if (rig.power_loss.form == FluxDecayForm::kFormA ||
+      rig.power_loss.form == FluxDecayForm::kFormB) {
     Positive(rig.power_loss.time_constant_s, "power_loss.time_constant_s");
+  }
+  if (rig.power_loss.form == FluxDecayForm::kRamp) {
+    Positive(rig.power_loss.slew_rate_A_per_s, "power_loss.slew_rate_A_per_s");
+  }
+  if (rig.controller.amplifier.enabled) {
+    Positive(rig.controller.amplifier.bandwidth_Hz, "controller.amplifier.bandwidth_Hz");
+  }
+  if (rig.controller.firmware && rig.controller.sections.empty()) {
+    throw std::runtime_error("controller.sections: a firmware controller needs a section");
+  }
+  if (!(rig.acquisition.settle_s >= 0.0 && rig.acquisition.settle_s <= 10.0)) {
+    throw std::runtime_error("acquisition.settle_s: expected 0 to 10 s");
   }
 }
 

@@ -1,0 +1,206 @@
+// The truth generator's flexible, magnet-biased, firmware-controlled rig (issue 24) against
+// closed forms it must obey, each computed here from the textbook formula, not from the
+// generator: free-free Euler-Bernoulli beam frequencies, a cylinder's inertias, Tustin's
+// prewarp at the notch, windage's hyperbolic coast-down, the slew-limited ramp, and a magnet's
+// bias that keeps pulling after the power is gone.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "drop_run.hpp"
+#include "firmware_controller.hpp"
+#include "rig.hpp"
+#include "rotor_modes.hpp"
+
+namespace ambdrop_truth {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+Rig RigB() {
+  std::string path = AMBDROP_SOURCE_DIR;
+  path.append("/tools/truth/rigs/flexible_pm_b.json");
+  return ReadRig(path);
+}
+
+RunOptions Quiet() {
+  RunOptions o;
+  o.add_noise = false;
+  return o;
+}
+
+FlexibleShaftRig UniformShaft(double length_m, double diameter_m, int elements) {
+  FlexibleShaftRig s;
+  s.enabled = true;
+  s.youngs_modulus_Pa = 2.1e11;
+  s.density_kg_m3 = 7850.0;
+  s.segments.push_back({length_m, diameter_m, 0.0, elements});
+  return s;
+}
+
+// Free-free beams: omega_n = (beta_n L)^2 sqrt(E I / (rho A L^4)) with beta_n L = 4.7300,
+// 7.8532, 10.9956 (Euler-Bernoulli; e.g. Blevins, "Formulas for Natural Frequency and Mode
+// Shape", Table 8-1). At L/D = 500 the rotary inertia is negligible (1e-5) and the 40 cubic
+// elements converged: within 1e-4. At L/D = 50 the Rayleigh beam's rotary inertia lowers each
+// frequency, by under 0.3 %.
+TEST(TruthFlexibleRig, FreeFreeBeamsMatchEulerBernoulli) {
+  const double beta_l[] = {4.730040745, 7.853204624, 10.99560784};
+  for (const double D : {0.002, 0.02}) {
+    const double L = 1.0;
+    const std::vector<double> w = FreeFreeBendingFrequencies(UniformShaft(L, D, 40), {});
+    const double area = kPi * D * D / 4.0, second = kPi * std::pow(D, 4) / 64.0;
+    const double scale = std::sqrt(2.1e11 * second / (7850.0 * area * std::pow(L, 4)));
+    ASSERT_GE(w.size(), 3u);
+    for (int n = 0; n < 3; ++n) {
+      const double euler_bernoulli = beta_l[n] * beta_l[n] * scale;
+      if (D < 0.01) {
+        EXPECT_NEAR(w[n] / euler_bernoulli, 1.0, 1e-4) << "mode " << n + 1;
+      } else {
+        EXPECT_LT(w[n], euler_bernoulli) << "mode " << n + 1;
+        EXPECT_NEAR(w[n] / euler_bernoulli, 1.0, 3e-3) << "mode " << n + 1;
+      }
+    }
+  }
+}
+
+// A cylinder with a disc: m, the centre of mass, It about it (m L^2 / 12 + m r^2 / 4 plus
+// parallel axes) and Ip (m r^2 / 2) to rounding: the consistent mass matrix integrates the
+// rigid-body fields exactly.
+TEST(TruthFlexibleRig, ShaftInertiaIsTheCylindersAndTheDiscs) {
+  FlexibleShaftRig shaft = UniformShaft(0.8, 0.06, 8);
+  shaft.start_m = 0.1;
+  shaft.discs.push_back({0.3, 6.0, 0.02, 0.035});
+  const RotorRig r = ShaftInertia(shaft);
+  const double rad = 0.03, ms = 7850.0 * kPi * rad * rad * 0.8, zs = 0.5;
+  const double m = ms + 6.0, zc = (ms * zs + 6.0 * 0.3) / m;
+  const double it = ms * (0.8 * 0.8 / 12.0 + rad * rad / 4.0) + ms * (zs - zc) * (zs - zc) + 0.02 +
+                    6.0 * (0.3 - zc) * (0.3 - zc);
+  EXPECT_NEAR(r.mass_kg, m, 1e-12 * m);
+  EXPECT_NEAR(r.centre_of_mass_m, zc, 1e-12);
+  EXPECT_NEAR(r.transverse_inertia_kg_m2, it, 1e-11 * it);
+  EXPECT_NEAR(r.polar_inertia_kg_m2, ms * rad * rad / 2.0 + 0.035, 1e-12);
+}
+
+// Tustin prewarped at the notch frequency gives the continuous response there exactly; plain
+// Tustin moves the notch (frequency warping, w_d = (2/T) atan(w T / 2)).
+TEST(TruthFlexibleRig, PrewarpedTustinHitsTheNotchFrequency) {
+  FirmwareSectionRig notch;
+  notch.kind = FirmwareSectionRig::Kind::kNotch;
+  notch.frequency_Hz = 470.0;
+  notch.pole_damping = 0.3;
+  notch.zero_damping = 0.02;
+  const double T = 1.0 / 5000.0, w0 = 2.0 * kPi * 470.0;
+  const Biquad plain = Discretise(notch, T);
+  notch.prewarp_Hz = 470.0;
+  const Biquad warped = Discretise(notch, T);
+  const std::complex<double> at_notch = SectionResponse(notch, w0);
+  EXPECT_NEAR(std::abs(at_notch), 0.02 / 0.3, 1e-12);
+  EXPECT_NEAR(std::abs(warped.Response(w0, T) - at_notch), 0.0, 1e-12);
+  EXPECT_GT(std::abs(plain.Response(w0, T) - at_notch), 1e-2);
+  // Both keep the DC gain of 1.
+  EXPECT_NEAR(std::abs(warped.Response(0.0, T)), 1.0, 1e-12);
+  EXPECT_NEAR(std::abs(plain.Response(0.0, T)), 1.0, 1e-12);
+}
+
+// With windage alone (no contact friction: the TDBs' coefficient 0), Ip W' = -c W^2 gives
+// W(t) = W0 / (1 + c W0 t / Ip) after the motor stops at the trigger.
+TEST(TruthFlexibleRig, WindageCoastDownIsHyperbolic) {
+  Rig rig = RigB();
+  for (TdbRig& t : rig.tdbs) t.friction_coefficient = 0.0;
+  rig.acquisition.settle_s = 0.0;
+  const RunResult run = RunDrop(rig, 1, Quiet());
+  ASSERT_TRUE(run.finite);
+  const double w0 = rig.spin_speed_rad_s, c = rig.coast_down.windage_N_m_s2;
+  const double ip = rig.rotor.polar_inertia_kg_m2, tp = rig.acquisition.trigger_time_s;
+  int checked = 0;
+  for (const RecordRow& row : run.rows) {
+    if (row.t_s < tp) {
+      EXPECT_EQ(row.rotor_speed_rad_s, w0);
+      continue;
+    }
+    const double expected = w0 / (1.0 + c * w0 * (row.t_s - tp) / ip);
+    EXPECT_NEAR(row.rotor_speed_rad_s, expected, 1e-9 * w0) << "t " << row.t_s;
+    ++checked;
+  }
+  EXPECT_GT(checked, 4000);
+  EXPECT_LT(run.rows.back().rotor_speed_rad_s, w0 - 5.0);  // the loss shows: > 50 rpm
+}
+
+// The DC link collapses at the trigger: each coil control current falls at the slew rate S
+// from the value c0 it carried and stays at zero from |c0| / S on.
+TEST(TruthFlexibleRig, RampReachesZeroAtTheCurrentOverTheSlewRate) {
+  const Rig rig = RigB();
+  const RunResult run = RunDrop(rig, 1, Quiet());
+  ASSERT_TRUE(run.finite);
+  const double tp = rig.acquisition.trigger_time_s, S = rig.power_loss.slew_rate_A_per_s;
+  const auto at = [&](double t) {
+    return *std::find_if(run.rows.begin(), run.rows.end(),
+                         [&](const RecordRow& r) { return r.t_s >= t - 1e-9; });
+  };
+  const RecordRow start = at(tp);
+  for (int a = 0; a < 2; ++a) {
+    for (int axis = 0; axis < 2; ++axis) {
+      const double c0 = start.current_A[a][axis];
+      const double zero_at = tp + std::abs(c0) / S;
+      if (axis == 1) {
+        ASSERT_GT(std::abs(c0), 0.5);  // the vertical axes carry the weight
+      }
+      if (std::abs(c0) < 0.01) continue;  // x: the rotor's small static offset only
+      const RecordRow mid = at(tp + 0.5 * (zero_at - tp));
+      EXPECT_NEAR(mid.current_A[a][axis], c0 - std::copysign(S * (mid.t_s - tp), c0), 1e-9);
+      EXPECT_EQ(at(zero_at + 1e-4).current_A[a][axis], 0.0);
+      EXPECT_NE(at(zero_at - 1e-4).current_A[a][axis], 0.0);
+    }
+  }
+}
+
+// A magnet's bias stays after power loss: with the coil currents gone at once, the rotor at
+// an AMB feels f = k I0^2 (1/(g0 - u)^2 - 1/(g0 + u)^2) ~ ks u, ks = 4 k I0^2 / g0^3, a
+// negative stiffness. The rotor (its centre of mass midway between the AMBs) then leaves
+// the centre as u'' = w^2 u - g, w^2 = 2 ks / m: |u| = g / w^2 (cosh w t - 1), faster than
+// free fall; with an electromagnet bias the force is gone and it falls as g t^2 / 2.
+TEST(TruthFlexibleRig, AMagnetBiasKeepsPullingAfterPowerLoss) {
+  Rig rig = RigB();
+  rig.power_loss.form = FluxDecayForm::kInstant;
+  rig.acquisition.sensor_quantisation_m = 0.0;
+  rig.acquisition.record_length_s = rig.acquisition.trigger_time_s + 0.006;
+  const RunResult magnet = RunDrop(rig, 1, Quiet());
+  for (AmbRig& a : rig.ambs) {
+    a.permanent_magnet_bias = false;
+    a.coil_current_limit_A = 2.0 * a.bias_current_A;
+  }
+  const RunResult electro = RunDrop(rig, 1, Quiet());
+  ASSERT_TRUE(magnet.finite && electro.finite);
+  const double tp = rig.acquisition.trigger_time_s;
+  const auto drop = [&](const RunResult& run, int s, double t) {
+    const auto before = std::find_if(run.rows.begin(), run.rows.end(),
+                                     [&](const RecordRow& r) { return r.t_s >= tp - 1e-9; });
+    const auto after = std::find_if(run.rows.begin(), run.rows.end(),
+                                    [&](const RecordRow& r) { return r.t_s >= tp + t - 1e-9; });
+    const double dx = after->displacement_m[s][0] - before->displacement_m[s][0];
+    const double dy = after->displacement_m[s][1] - before->displacement_m[s][1];
+    return std::hypot(dx, dy);
+  };
+  const AmbRig& a = rig.ambs[0];
+  const double ks = 4.0 * a.electromagnet_constant_N_m2_per_A2 * a.bias_current_A *
+                    a.bias_current_A / std::pow(a.nominal_gap_m, 3);
+  const double w = std::sqrt(2.0 * ks / rig.rotor.mass_kg), g = rig.gravity_m_s2;
+  // Before the journals reach their TDBs (0.2 mm).
+  for (const double t : {4e-3, 5e-3}) {
+    const double free_fall = 0.5 * g * t * t;
+    const double pulled = g / (w * w) * (std::cosh(w * t) - 1.0);
+    for (int s = 0; s < 2; ++s) {
+      // Within what the released sag's bending adds at the sensors.
+      EXPECT_NEAR(drop(electro, s, t), free_fall, 0.05 * free_fall) << "sensor " << s;
+      EXPECT_NEAR(drop(magnet, s, t), pulled, 0.05 * pulled) << "sensor " << s;
+    }
+    EXPECT_GT(pulled, 1.08 * free_fall);  // the two are told apart
+  }
+}
+
+}  // namespace
+}  // namespace ambdrop_truth
