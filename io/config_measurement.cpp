@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -359,7 +360,7 @@ void CheckFromRecord(const TableReader& table, const ModelParams& params,
 
 MeasurementParams ReadMeasurement(const TableReader& table, const ModelParams& params) {
   table.AllowOnly({"sample_rate_Hz", "trigger_time_s", "trigger", "time_column", "time_unit",
-                   "power_loss", "channel"});
+                   "power_loss", "trigger_state", "channel"});
   MeasurementParams m;
   // The unit goes in the message unless the shared reader already derives it from the key.
   const bool unit_known = !UnitOfKey("sample_rate_Hz").empty();
@@ -400,6 +401,21 @@ MeasurementParams ReadMeasurement(const TableReader& table, const ModelParams& p
   if (table.Choice("power_loss", {"declared", "from_record"}, "declared") == "from_record") {
     m.power_loss = PowerLossSource::kFromRecord;
     CheckFromRecord(table, params, m);
+  }
+  if (table.Choice("trigger_state", {"model", "record"}, "model") == "record") {
+    m.trigger_state_from_record = true;
+    if (m.power_loss == PowerLossSource::kFromRecord) {
+      table.Fail("trigger_state",
+                 "\"model\" with power_loss = \"from_record\": that run is open loop and starts "
+                 "from the record's state already");
+    }
+    if (std::none_of(m.channels.begin(), m.channels.end(), [](const MeasurementChannel& ch) {
+          return ch.quantity == MeasuredQuantity::kDisplacement;
+        })) {
+      table.Fail("trigger_state",
+                 "\"model\", or a channel with quantity = \"displacement\" (the state at the "
+                 "trigger is read from them)");
+    }
   }
   return m;
 }

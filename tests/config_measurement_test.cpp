@@ -229,7 +229,7 @@ std::vector<RuleCase> TableCases() {
       {"UnknownKey", Valid("trigger_time_s = 0.2", "trigger_time_s = 0.2\nrate_Hz = 1"),
        "rate_Hz = 1", "measurement.rate_Hz",
        "(allowed here: sample_rate_Hz, trigger_time_s, trigger, time_column, time_unit, "
-       "power_loss, channel)"},
+       "power_loss, trigger_state, channel)"},
       {"SampleRateMissing", Valid("sample_rate_Hz = 20000.0\n", ""), "[measurement]",
        "measurement.sample_rate_Hz",
        "missing key 'measurement.sample_rate_Hz': expected a "
@@ -263,6 +263,10 @@ std::vector<RuleCase> TableCases() {
        "power_loss", "measurement.power_loss",
        "or amb.de.flux_decay enabled: with an electromagnet bias the record's control current "
        "('i_de_y') rides on a bias current that the record does not carry"},
+      {"TriggerStateUnknown",
+       Valid("trigger_time_s = 0.2", "trigger_time_s = 0.2\ntrigger_state = \"estimate\""),
+       "trigger_state", "measurement.trigger_state", "expected one of \"model\", \"record\"",
+       "\"estimate\""},
       {"ChannelNotTables",
        Rig() + "[measurement]\nsample_rate_Hz = 1e3\ntrigger_time_s = 0.1\nchannel = 3\n",
        "channel = 3", "measurement.channel", "expected an array of tables", "3"},

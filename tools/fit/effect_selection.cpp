@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "tools/fit/candidate_screen.hpp"
+#include "tools/fit/lead_state_estimate.hpp"
 #include "tools/fit/noise_floor.hpp"
 #include "tools/fit/parallel_for.hpp"
 
@@ -68,11 +69,20 @@ double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
   // Open loop the start state is fitted to a quadratic through each displacement channel near
   // the start: the noise leaves its value and slope uncertain (OpenLoopStartUncertainty). On a
   // plant that the held currents leave unstable that slope decides where the rotor drifts.
+  // A closed-loop run whose state at the trigger is fitted to a lead window of the record
+  // (measurement.trigger_state) is as uncertain as a level and a slope fitted to N samples
+  // over the window's length L: 1/sqrt(N) and sqrt(12/N)/L per unit of noise.
   std::vector<RecordRunOptions> starts;
-  if (!ClosedLoop(params, m, cost.run_options())) {
+  const bool closed = ClosedLoop(params, m, cost.run_options());
+  if (!closed || m.trigger_state_from_record) {
     const double sigma = 3.0 * amplitude;  // the channels' median noise
-    const auto [value_per_sigma, slope_per_sigma] =
-        OpenLoopStartUncertainty(r, cost.compare_from_s());
+    auto [value_per_sigma, slope_per_sigma] = OpenLoopStartUncertainty(r, cost.compare_from_s());
+    if (closed) {
+      const double lead = TriggerStateLeadSeconds(r);
+      const double samples = std::max(2.0, lead / r.SampleInterval());
+      value_per_sigma = 1.0 / std::sqrt(samples);
+      slope_per_sigma = std::sqrt(12.0 / samples) / lead;
+    }
     for (const double sign : {1.0, -1.0}) {
       RecordRunOptions o = cost.run_options();
       o.start_position_shift_m = sign * sigma * value_per_sigma;

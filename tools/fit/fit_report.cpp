@@ -9,6 +9,7 @@
 
 #include "io/json_writer.hpp"
 #include "tools/fit/fit_plots.hpp"
+#include "tools/fit/prediction_csv.hpp"
 
 namespace ambdrop {
 namespace {
@@ -311,6 +312,7 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
                     const SimulatedRecord& after) {
   const Selection& s = *o.selection;
   const std::vector<std::string> plots = WriteFitPlots(dir, params, m, record, before, after);
+  WriteTextFile(dir / "prediction.csv", PredictionCsv(m, record, before, after));
   std::string md;
   md += fmt::format("# Fit of {} to {}\n\n", o.config_path, o.measured_path);
   md += fmt::format("**Verdict: {}.** {}.\n\n", s.verdict, s.reason);

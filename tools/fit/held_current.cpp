@@ -1,6 +1,9 @@
 #include "tools/fit/held_current.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include "rt_core/power_loss_drive.hpp"
 
 namespace ambdrop {
 
@@ -18,6 +21,42 @@ double HeldCurrentAtTrigger(const MeasuredRecord& r, int column, double trigger_
   }
   if (first == 0) return v.front();
   return v[first - 1];
+}
+
+double HeldCurrentWindowSeconds(const MeasuredRecord& r) {
+  return std::min(2e-3, 40.0 * r.SampleInterval());
+}
+
+double HeldCurrentByLaw(const MeasuredRecord& r, int column, double trigger_s,
+                        const AmbParams& amb) {
+  const double reading = HeldCurrentAtTrigger(r, column, trigger_s, true);
+  const std::vector<double>& ts = r.time_s;
+  const std::vector<double>& v = r.values[static_cast<std::size_t>(column)];
+  const double slack = 1e-6 * r.SampleInterval();
+  const double window = HeldCurrentWindowSeconds(r);
+  const auto first = std::lower_bound(ts.begin(), ts.end(), trigger_s - slack) - ts.begin();
+  const auto law = [&](double c0, double t) {
+    return ReportedCoilCurrent(PowerLossDrive(amb, c0, std::max(0.0, t)));
+  };
+  double c0 = reading;
+  const double h = 1e-6 + 1e-6 * std::abs(reading);
+  for (int iteration = 0; iteration < 4; ++iteration) {
+    double jtj = 0.0, jte = 0.0;
+    for (auto j = static_cast<std::size_t>(first); j < ts.size(); ++j) {
+      const double t = ts[j] - trigger_s;
+      if (t > window + slack) break;
+      const double predicted = law(c0, t);
+      const double slope = (law(c0 + h, t) - law(c0 - h, t)) / (2.0 * h);
+      jtj += slope * slope;
+      jte += slope * (v[j] - predicted);
+    }
+    if (!(jtj > 0.0)) return reading;  // the law's current does not depend on c0
+    const double step = jte / jtj;
+    c0 += step;
+    if (!std::isfinite(c0)) return reading;
+    if (std::abs(step) <= 1e-12 * (1.0 + std::abs(c0))) break;
+  }
+  return c0;
 }
 
 }  // namespace ambdrop

@@ -11,6 +11,7 @@
 //    decayed 0.320 A.
 // The samples at and just after the trigger say what was held: the decay starts from it.
 #include "io/measured_csv.hpp"
+#include "rt_core/amb_params.hpp"
 
 namespace ambdrop {
 
@@ -23,5 +24,18 @@ namespace ambdrop {
 /// or before it).
 double HeldCurrentAtTrigger(const MeasuredRecord& record, int column, double trigger_s,
                             bool decay_seen = true);
+
+/// The held current c0 that makes `amb`'s declared power-loss law (rt_core/power_loss_drive.hpp:
+/// the control current it reports, c(t; c0)) fit the coil-current column's samples over
+/// HeldCurrentWindowSeconds after the trigger, by least squares (Gauss-Newton from
+/// HeldCurrentAtTrigger's reading). Two samples leave it the current's noise (5 mA on
+/// tools/truth's records) off, and on a rotor that the power loss leaves unstable (a magnet's
+/// bias) that error drives the drop: the law's whole window averages it down. A law whose
+/// reported current does not depend on c0 (the currents vanish at once) keeps the reading.
+double HeldCurrentByLaw(const MeasuredRecord& record, int column, double trigger_s,
+                        const AmbParams& amb);
+
+/// The window of HeldCurrentByLaw: 2 ms and at most 40 samples.
+double HeldCurrentWindowSeconds(const MeasuredRecord& record);
 
 }  // namespace ambdrop

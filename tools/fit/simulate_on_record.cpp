@@ -19,6 +19,7 @@
 #include "rt_core/model.hpp"
 #include "rt_core/power_loss_drive.hpp"
 #include "tools/fit/held_current.hpp"
+#include "tools/fit/lead_state_estimate.hpp"
 
 namespace ambdrop {
 namespace {
@@ -143,6 +144,40 @@ bool ClosedLoop(const ModelParams& params, const MeasurementParams& measurement,
                      [](const AmbParams& a) { return a.law == AmbForceLaw::kEquivalent; });
 }
 
+namespace {
+
+// Sets the rotor's modal positions and velocities to those that best explain the displacement
+// channels at record time t: a quadratic through each channel's samples within
+// OpenLoopStartHalfWindow of t gives its value and slope, which the least-squares correction of
+// minimum norm takes the state to (the modes the sensors do not see keep their values).
+void SetToRecordedState(const Model& model, const MeasurementParams& m, const MeasuredRecord& r,
+                        double t, const RecordRunOptions& options, State* state) {
+  const int n = model.modes();
+  std::vector<Eigen::RowVectorXd> rows_q;
+  std::vector<double> pos, vel;
+  const double half_window = OpenLoopStartHalfWindow(r);
+  const Eigen::VectorXd q = state->y.head(n), v = state->y.segment(n, n);
+  for (const MeasurementChannel& ch : m.channels) {
+    if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
+    const SensorParams& s = model.params.sensors[ch.index];
+    const auto [value, slope] = LocalFit(r, r.Column(ch.column), t, half_window);
+    const Eigen::RowVectorXd row = model.sensor_shapes[ch.index].row(ch.axis) * s.AxisGain(ch.axis);
+    rows_q.push_back(row);
+    pos.push_back(value + options.start_position_shift_m - s.AxisOffset_m(ch.axis) - row.dot(q));
+    vel.push_back(slope + options.start_velocity_shift_m_s - row.dot(v));
+  }
+  if (rows_q.empty()) return;
+  Eigen::MatrixXd a(static_cast<Eigen::Index>(rows_q.size()), n);
+  for (std::size_t i = 0; i < rows_q.size(); ++i) a.row(static_cast<Eigen::Index>(i)) = rows_q[i];
+  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> fit(a);
+  const Eigen::Map<const Eigen::VectorXd> dp(pos.data(), static_cast<Eigen::Index>(pos.size()));
+  const Eigen::Map<const Eigen::VectorXd> dv(vel.data(), static_cast<Eigen::Index>(vel.size()));
+  state->y.head(n) += fit.solve(dp);
+  state->y.segment(n, n) += fit.solve(dv);
+}
+
+}  // namespace
+
 SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementParams& m,
                                  const MeasuredRecord& r, const RecordRunOptions& options) {
   SimulatedRecord out;
@@ -224,7 +259,9 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
           ch.quantity == MeasuredQuantity::kCurrent &&
           ch.InWindow(out.trigger_time_s, out.trigger_time_s) &&
           ch.InWindow(out.trigger_time_s + 2.0 * r.SampleInterval(), out.trigger_time_s);
-      held_A[a][axis] = HeldCurrentAtTrigger(r, c, out.trigger_time_s, decay_seen);
+      held_A[a][axis] = decay_seen
+                            ? HeldCurrentByLaw(r, c, out.trigger_time_s, model.params.ambs[a])
+                            : HeldCurrentAtTrigger(r, c, out.trigger_time_s, false);
     }
   }
   const ControlInput static_load = StaticLoadInput(model);
@@ -300,33 +337,25 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
     state = sim.InitialState(static_load);
   } else {
     measured_currents(t_start, false);
-    state = sim.InitialState(input);
-    // The modal coordinates that best explain the displacement channels around the start.
-    std::vector<Eigen::RowVectorXd> rows_q;
-    std::vector<double> pos, vel;
-    const double half_window = OpenLoopStartHalfWindow(r);
-    for (const MeasurementChannel& ch : m.channels) {
-      if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
-      const SensorParams& s = model.params.sensors[ch.index];
-      const auto [value, slope] = LocalFit(r, r.Column(ch.column), t_start, half_window);
-      rows_q.push_back(model.sensor_shapes[ch.index].row(ch.axis) * s.AxisGain(ch.axis));
-      pos.push_back(value + options.start_position_shift_m - s.AxisOffset_m(ch.axis));
-      vel.push_back(slope + options.start_velocity_shift_m_s);
+    if (options.initial_state) {
+      state = *options.initial_state;
+      state.step_index = 0;
+    } else {
+      state = sim.InitialState(input);
+      // The modal coordinates that best explain the displacement channels around the start.
+      SetToRecordedState(model, m, r, t_start, options, &state);
+      state.y(model.spin_angle_index()) = configured_spin * t_start;
     }
-    if (!rows_q.empty()) {
-      Eigen::MatrixXd a(static_cast<Eigen::Index>(rows_q.size()), n);
-      for (std::size_t i = 0; i < rows_q.size(); ++i) {
-        a.row(static_cast<Eigen::Index>(i)) = rows_q[i];
-      }
-      const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> fit(a);
-      const Eigen::Map<const Eigen::VectorXd> p(pos.data(), static_cast<Eigen::Index>(pos.size()));
-      const Eigen::Map<const Eigen::VectorXd> v(vel.data(), static_cast<Eigen::Index>(vel.size()));
-      // Minimum norm: modes the sensors cannot see start at rest.
-      state.y.head(n) = fit.solve(p);
-      state.y.segment(n, n) = fit.solve(v);
-    }
-    state.y(model.spin_angle_index()) = configured_spin * t_start;
+    if (options.state_correction.size() == 2 * n) state.y.head(2 * n) += options.state_correction;
   }
+  // measurement.trigger_state = "record": over a lead window before the trigger the record's
+  // currents drive the rotor, whose seen state is fitted to the window (lead_state_estimate.hpp).
+  const double lead_s = TriggerStateLeadSeconds(r);
+  const std::int64_t lead_steps = static_cast<std::int64_t>(std::llround(lead_s / dt));
+  const std::int64_t lead_step = closed && m.trigger_state_from_record
+                                     ? std::max<std::int64_t>(0, model.trigger_step - lead_steps)
+                                     : -1;
+  bool lead_driven = false;
 
   // Rows of the record to predict, and the step each falls on.
   const std::size_t record_rows = r.time_s.size();
@@ -393,14 +422,20 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
       held_currents();
       power.Apply(failure, k, input);
     }
+    if (k == lead_step) {
+      state.y.head(2 * n) +=
+          LeadStateCorrection(declared, m, r, options, model, state, out.trigger_time_s,
+                              static_cast<double>(model.trigger_step - k) * dt);
+      lead_driven = true;
+    }
     if (controlled && k % substeps == 0) {
       sim.Observe(state, &obs);
       controller_sensors->Sample(obs, &controller_readings);
       controller->Update(controller_readings, &input);
+      keep_command();
     }
-    if (!closed && k < model.trigger_step) measured_currents(t_record, false);
+    if ((!closed || lead_driven) && k < model.trigger_step) measured_currents(t_record, false);
     if (!controlled) keep_command();
-    if (controlled && k % substeps == 0) keep_command();
     power.Fill(k, &input);
     if (k >= model.trigger_step) {
       const double seconds = static_cast<double>(k - model.trigger_step) * dt;

@@ -42,6 +42,11 @@ struct RecordRunOptions {
   /// noise pins that state (tools/fit/effect_selection.cpp).
   double start_position_shift_m = 0.0;
   double start_velocity_shift_m_s = 0.0;
+  /// Open loop: start from this state (its time restarts at the run's start) instead of the
+  /// one fitted to the record; with `state_correction` (modal positions then velocities, 2n)
+  /// added to it. Used by the lead estimate of measurement.trigger_state = "record".
+  std::shared_ptr<const State> initial_state;
+  Eigen::VectorXd state_correction;
 };
 
 /// Open loop: the initial state is fitted to a quadratic through each displacement channel's

@@ -166,9 +166,8 @@ void Plant::Derivative(const PlantState& y, const PlantInput& in, PlantState* ra
   fy_.noalias() -= m.damping * vy;
   fy_.noalias() -= m.stiffness * qy;
   fy_.noalias() += m.gyroscopic * (spin * vx + spin_rate * qx);
-  fy_ -= r.gravity_m_s2 * m.weight_share;
-  ax_.noalias() = m.mass_inverse * fx_;
-  ay_.noalias() = m.mass_inverse * fy_;
+  ax_ = fx_.cwiseQuotient(m.mass);
+  ay_ = fy_.cwiseQuotient(m.mass) - r.gravity_m_s2 * m.gravity_acceleration;
   rate->segment(L.qx(0), n) = vx;
   rate->segment(L.qy(0), n) = vy;
   rate->segment(L.vx(0), n) = ax_;
@@ -206,7 +205,7 @@ double Plant::Energy(const PlantState& y) const {
   const auto qx = y.segment(L.qx(0), n), qy = y.segment(L.qy(0), n);
   const auto vx = y.segment(L.vx(0), n), vy = y.segment(L.vy(0), n);
   const RotorModes& m = modes_;
-  double e = 0.5 * (vx.dot(m.mass * vx) + vy.dot(m.mass * vy)) +
+  double e = 0.5 * (vx.dot(m.mass.cwiseProduct(vx)) + vy.dot(m.mass.cwiseProduct(vy))) +
              0.5 * (qx.dot(m.stiffness * qx) + qy.dot(m.stiffness * qy)) +
              0.5 * r.rotor.polar_inertia_kg_m2 * y(L.spin()) * y(L.spin()) +
              r.gravity_m_s2 * m.weight_share.dot(qy);

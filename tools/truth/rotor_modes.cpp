@@ -155,12 +155,12 @@ RotorModes RigidRotorModes(const RotorRig& rotor) {
   RotorModes m;
   m.n = 2;
   m.centre_of_mass_m = rotor.centre_of_mass_m;
-  m.mass = Eigen::Vector2d(rotor.mass_kg, rotor.transverse_inertia_kg_m2).asDiagonal();
-  m.mass_inverse = m.mass.inverse();
+  m.mass = Eigen::Vector2d(rotor.mass_kg, rotor.transverse_inertia_kg_m2);
   m.damping = Eigen::MatrixXd::Zero(2, 2);
   m.stiffness = Eigen::MatrixXd::Zero(2, 2);
   m.gyroscopic = Eigen::Vector2d(0.0, rotor.polar_inertia_kg_m2).asDiagonal();
   m.weight_share = Eigen::Vector2d(rotor.mass_kg, 0.0);
+  m.gravity_acceleration = m.weight_share.cwiseQuotient(m.mass);
   return m;
 }
 
@@ -197,8 +197,7 @@ RotorModes FlexibleRotorModes(const FlexibleShaftRig& shaft, std::vector<double>
   m.n = n;
   m.nodes_m = mesh.nodes_m;
   m.shapes = solver.eigenvectors().leftCols(n);  // M-normalised
-  m.mass = Eigen::MatrixXd::Identity(n, n);
-  m.mass_inverse = m.mass;
+  m.mass = Eigen::VectorXd::Ones(n);
   m.stiffness = Eigen::MatrixXd::Zero(n, n);
   m.damping = Eigen::MatrixXd::Zero(n, n);
   for (int i = 2; i < n; ++i) {
@@ -209,6 +208,7 @@ RotorModes FlexibleRotorModes(const FlexibleShaftRig& shaft, std::vector<double>
   }
   m.gyroscopic = m.shapes.transpose() * a.gyroscopic * m.shapes;
   m.weight_share = m.shapes.transpose() * (a.mass * Translation(mesh));
+  m.gravity_acceleration = m.weight_share.cwiseQuotient(m.mass);
   const RotorRig inertia = ShaftInertia(shaft);
   m.centre_of_mass_m = inertia.centre_of_mass_m;
   return m;

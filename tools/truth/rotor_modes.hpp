@@ -25,8 +25,12 @@ namespace ambdrop_truth {
 
 struct RotorModes {
   int n = 0;  ///< coordinates per plane
-  Eigen::MatrixXd mass, mass_inverse, damping, stiffness, gyroscopic;
-  Eigen::VectorXd weight_share;  ///< r: the generalised force of a unit acceleration (kg)
+  /// M is diagonal in both models (diag(m, It); the identity of mass-normalised modes), so the
+  /// accelerations divide by its diagonal: for the rigid rotor bit for bit the old 4-DOF form.
+  Eigen::VectorXd mass;
+  Eigen::MatrixXd damping, stiffness, gyroscopic;
+  Eigen::VectorXd weight_share;          ///< r: the generalised force of a unit acceleration (kg)
+  Eigen::VectorXd gravity_acceleration;  ///< r / M: each coordinate's acceleration per unit g
   std::vector<double> bending_rad_s;
 
   // The flexible model's mesh and mode shapes (node i: rows 2i displacement, 2i + 1 slope).

@@ -1,0 +1,114 @@
+#include "tools/fit/lead_state_estimate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include <Eigen/QR>
+#include <Eigen/SVD>
+
+namespace ambdrop {
+
+double TriggerStateLeadSeconds(const MeasuredRecord& record) {
+  return std::max(6e-3, 40.0 * record.SampleInterval());
+}
+
+Eigen::VectorXd LeadStateCorrection(const ModelParams& declared, const MeasurementParams& m,
+                                    const MeasuredRecord& r, const RecordRunOptions& options,
+                                    const Model& model, const State& at_lead_start,
+                                    double trigger_s, double lead_s) {
+  const int n = model.modes();
+  const Eigen::VectorXd none = Eigen::VectorXd::Zero(2 * n);
+  std::vector<std::size_t> channels;
+  std::vector<Eigen::RowVectorXd> shape_rows;
+  for (std::size_t c = 0; c < m.channels.size(); ++c) {
+    const MeasurementChannel& ch = m.channels[c];
+    if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
+    channels.push_back(c);
+    shape_rows.push_back(model.sensor_shapes[ch.index].row(ch.axis) *
+                         model.params.sensors[ch.index].AxisGain(ch.axis));
+  }
+  if (channels.empty()) return none;
+  // The directions the sensors see.
+  Eigen::MatrixXd a(static_cast<Eigen::Index>(shape_rows.size()), n);
+  for (std::size_t i = 0; i < shape_rows.size(); ++i) {
+    a.row(static_cast<Eigen::Index>(i)) = shape_rows[i];
+  }
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sv = svd.singularValues();
+  std::vector<Eigen::VectorXd> directions;  // 2n each: a position or a velocity direction
+  std::vector<double> steps;
+  for (int part = 0; part < 2; ++part) {
+    for (Eigen::Index j = 0; j < sv.size(); ++j) {
+      if (!(sv(j) > 1e-9 * sv(0))) continue;
+      Eigen::VectorXd d = Eigen::VectorXd::Zero(2 * n);
+      d.segment(part * n, n) = svd.matrixV().col(j);
+      directions.push_back(d);
+      // 1 um at the sensors, or 1 mm/s: micrometres over the window either way.
+      steps.push_back((part == 0 ? 1e-6 : 1e-3) / sv(j));
+    }
+  }
+
+  RecordRunOptions o = options;
+  o.pre_trigger = PreTrigger::kMeasuredCurrents;
+  o.lead_s = lead_s;
+  o.end_s = trigger_s;
+  o.start_position_shift_m = 0.0;
+  o.start_velocity_shift_m_s = 0.0;
+  o.initial_state = std::make_shared<const State>(at_lead_start);
+  o.state_correction = none;
+  const SimulatedRecord base = SimulateOnRecord(declared, m, r, o);
+  if (base.status != StepStatus::kOk) return none;
+
+  // The window's samples: displacement channels, record rows from the lead's start to the
+  // trigger, where the base run predicts them.
+  struct Sample {
+    std::size_t channel = 0, row = 0;
+  };
+  std::vector<Sample> samples;
+  for (const std::size_t c : channels) {
+    for (std::size_t j = base.first_row; j < base.first_row + base.rows; ++j) {
+      if (r.time_s[j] > trigger_s + 1e-12) break;
+      if (std::isfinite(base.values[c][j])) samples.push_back({c, j});
+    }
+  }
+  if (samples.size() < 2 * directions.size()) return none;
+  Eigen::VectorXd e(static_cast<Eigen::Index>(samples.size()));
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const Sample& s = samples[i];
+    const double measured = r.values[r.Column(m.channels[s.channel].column)][s.row] +
+                            options.start_position_shift_m +
+                            options.start_velocity_shift_m_s * (r.time_s[s.row] - trigger_s);
+    e(static_cast<Eigen::Index>(i)) = measured - base.values[s.channel][s.row];
+  }
+  Eigen::MatrixXd jacobian(e.size(), static_cast<Eigen::Index>(directions.size()));
+  for (std::size_t k = 0; k < directions.size(); ++k) {
+    o.state_correction = steps[k] * directions[k];
+    const SimulatedRecord moved = SimulateOnRecord(declared, m, r, o);
+    if (moved.status != StepStatus::kOk) return none;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const Sample& s = samples[i];
+      jacobian(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) =
+          (moved.values[s.channel][s.row] - base.values[s.channel][s.row]) / steps[k];
+    }
+  }
+  if (!jacobian.allFinite() || !e.allFinite()) return none;
+  // Columns scaled to unit norm, then the minimum-norm least-squares solution: directions the
+  // window cannot tell apart (below 1e-6 of the best seen) are left alone.
+  Eigen::VectorXd scale = jacobian.colwise().norm().transpose();
+  const double largest = scale.maxCoeff();
+  if (!(largest > 0.0)) return none;
+  for (Eigen::Index k = 0; k < scale.size(); ++k) scale(k) = std::max(scale(k), 1e-12 * largest);
+  const Eigen::MatrixXd scaled = jacobian * scale.cwiseInverse().asDiagonal();
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> solver(scaled);
+  solver.setThreshold(1e-6);
+  const Eigen::VectorXd alpha = solver.solve(e).cwiseQuotient(scale);
+  Eigen::VectorXd correction = none;
+  for (std::size_t k = 0; k < directions.size(); ++k) {
+    correction += alpha(static_cast<Eigen::Index>(k)) * directions[k];
+  }
+  return correction.allFinite() ? correction : none;
+}
+
+}  // namespace ambdrop
