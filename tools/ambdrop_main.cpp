@@ -80,6 +80,12 @@ int main(int argc, char** argv) {
                         "timeseries.csv: every AMB's commanded and coil currents per axis "
                         "(amb_<name>_x_command_A, ..., amb_<name>_y_coil_A) as the last columns");
   sim_command
+      ->add_option("--junit", sim.junit_path,
+                   "With --scenario: write the run's checks and the scenario's expectations as "
+                   "JUnit XML")
+      ->type_name("FILE")
+      ->needs(sim_scenario);
+  sim_command
       ->add_option("--record", sim.record_path,
                    "Record the run (inputs, power events, sensor samples, state) into an LCM "
                    "event log for `ambdrop replay`")

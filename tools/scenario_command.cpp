@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -17,6 +18,7 @@
 #include "io/json_writer.hpp"
 #include "io/timeseries_csv.hpp"
 #include "tools/exit_codes.hpp"
+#include "tools/junit_report.hpp"
 #include "tools/long_run_note.hpp"
 #include "tools/record/run_record_writer.hpp"
 #include "tools/record/trajectory_hasher.hpp"
@@ -44,6 +46,7 @@ const char* StatusOf(HilStop stop) {
 }  // namespace
 
 int RunScenarioCommand(const SimOptions& options) {
+  const auto wall_start = std::chrono::steady_clock::now();
   LoadedConfig config;
   std::optional<Model> model;
   std::int64_t substeps = 0;
@@ -164,6 +167,24 @@ int RunScenarioCommand(const SimOptions& options) {
       outcome.Evaluate(scenario.expect, status, session);
   bool all_pass = true;
   for (const auto& c : checks) all_pass = all_pass && c.pass;
+  if (!options.junit_path.empty()) {
+    // As `hil --junit` writes it: the run's own checks, then each expectation.
+    std::vector<JunitCase> cases;
+    cases.push_back({"sim", "run_completed", session.stop() != HilStop::kDiverged,
+                     fmt::format("the run stopped: {}", status)});
+    cases.push_back({"sim", "outputs_written", output_error.empty(), output_error});
+    for (const ScenarioOutcome::Check& c : checks) {
+      cases.push_back({"sim.scenario", c.name, c.pass,
+                       fmt::format("expected {}, got {}", c.expected, c.actual)});
+    }
+    try {
+      WriteJunit(
+          options.junit_path, "ambdrop sim --scenario " + options.scenario_path, cases,
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
+    } catch (const std::exception& e) {
+      if (output_error.empty()) output_error = std::string("--junit: ") + e.what();
+    }
+  }
 
   JsonWriter json;
   json.BeginObject();

@@ -15,6 +15,8 @@ struct SimOptions {
   /// default: replay, hil and scenario runs do not write them yet, and their files are compared
   /// byte for byte with sim's).
   bool amb_currents = false;
+  /// With scenario_path: the run's checks and the scenario's expectations as JUnit XML.
+  std::string junit_path;
 };
 
 /// `ambdrop sim`: loads the config, runs it offline and writes into options.out_dir

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Every scenario in configs/scenarios/ runs with `ambdrop sim --scenario` and its expected
 # outcome holds (exit 0, every check "pass" in summary.json); a scenario whose expectation is
-# wrong exits 4 and says which check failed; a rig config without [scenario] is refused.
+# wrong exits 4 and says which check failed, in JUnit XML too (`--junit FILE`, read back with
+# Python's XML parser); a rig config without [scenario] is refused, and so is --junit without
+# --scenario.
 # Usage: scenarios.sh AMBDROP_BINARY SOURCE_DIR
 set -euo pipefail
 tool=$1
@@ -38,9 +40,40 @@ base = "$source_dir/configs/scenarios/trigger_glitch.toml"
 contact = true
 TOML
 rc=0
-"$tool" sim --scenario "$work/wrong.toml" --out "$work/wrong" >"$work/wrong.txt" 2>&1 || rc=$?
+"$tool" sim --scenario "$work/wrong.toml" --out "$work/wrong" --junit "$work/wrong.xml" \
+  >"$work/wrong.txt" 2>&1 || rc=$?
 [[ $rc -eq 4 ]] || fail "a failed expectation exited $rc"
 grep -q "FAIL contact" "$work/wrong.txt" || fail "the failed check is not named: $(cat "$work/wrong.txt")"
+"$tool" sim --scenario "$source_dir/configs/scenarios/trigger_glitch.toml" --out "$work/glitch" \
+  --junit "$work/right.xml" --quiet || fail "the glitch scenario with --junit exited $?"
+python3 - "$work/wrong.xml" "$work/right.xml" "$work/wrong/summary.json" <<'PY'
+import json, sys
+import xml.etree.ElementTree as ET
+
+def suite(path):
+    s = ET.parse(path).getroot().find("testsuite")
+    cases = {(c.get("classname"), c.get("name")): c.find("failure") for c in s.findall("testcase")}
+    assert int(s.get("tests")) == len(cases), s.attrib
+    assert int(s.get("failures")) == sum(f is not None for f in cases.values()), s.attrib
+    return cases
+
+wrong, right = suite(sys.argv[1]), suite(sys.argv[2])
+checks = json.load(open(sys.argv[3]))["scenario"]["checks"]
+# One case per expectation, failed exactly where summary.json says, plus the run's own two.
+assert len(wrong) == len(checks) + 2, (len(wrong), checks)
+for c in checks:
+    failure = wrong[("sim.scenario", c["check"])]
+    assert (failure is None) == c["pass"], (c, failure)
+assert wrong[("sim.scenario", "contact")] is not None
+assert "expected" in wrong[("sim.scenario", "contact")].get("message")
+assert wrong[("sim", "run_completed")] is None and wrong[("sim", "outputs_written")] is None
+assert all(f is None for f in right.values()), right
+PY
+rc=0
+"$tool" sim "$source_dir/configs/jarroux2019_industrial_pid.toml" --junit "$work/x.xml" \
+  --out "$work/x" 2>"$work/nojunit.err" || rc=$?
+[[ $rc -eq 64 && ! -e $work/x.xml ]] || fail "--junit without --scenario exited $rc, expected 64 (usage)"
+grep -q "requires --scenario" "$work/nojunit.err" || fail "unclear error: $(cat "$work/nojunit.err")"
 
 # A plain rig is not a scenario.
 rc=0
