@@ -404,11 +404,6 @@ MeasurementParams ReadMeasurement(const TableReader& table, const ModelParams& p
   }
   if (table.Choice("trigger_state", {"model", "record"}, "model") == "record") {
     m.trigger_state_from_record = true;
-    if (m.power_loss == PowerLossSource::kFromRecord) {
-      table.Fail("trigger_state",
-                 "\"model\" with power_loss = \"from_record\": that run is open loop and starts "
-                 "from the record's state already");
-    }
     if (std::none_of(m.channels.begin(), m.channels.end(), [](const MeasurementChannel& ch) {
           return ch.quantity == MeasuredQuantity::kDisplacement;
         })) {

@@ -129,13 +129,14 @@ struct MeasurementParams {
   /// predict and those channels are inputs, never compared. A controller-command channel never
   /// drives after the trigger (it keeps answering the falling rotor, the coil does not).
   PowerLossSource power_loss = PowerLossSource::kDeclared;
-  /// `trigger_state = "record"`: a closed-loop run's rotor is set at the trigger to the state
-  /// its displacement channels show then (a quadratic through each channel's samples within
-  /// OpenLoopStartHalfWindow of the trigger; the modes the sensors do not see keep the
-  /// model's). The record's noise moves a levitated rotor by more than any model predicts
-  /// sample by sample, and a rotor that the power loss leaves unstable (a magnet's bias, whose
-  /// negative stiffness stays) goes where that motion sends it. "model" (default): the model's
-  /// own levitated state.
+  /// `trigger_state = "record"`: the rotor's state at the trigger is fitted, through the model
+  /// driven by the measured currents, to a lead window of the displacement samples before it
+  /// (tools/fit/lead_state_estimate.hpp); closed loop the window starts from the model's own
+  /// levitated state, open loop from the local fit at the window's start. The record's noise
+  /// moves a levitated rotor by more than any model predicts sample by sample, and a rotor that
+  /// the power loss leaves unstable (a magnet's bias, whose negative stiffness stays) goes where
+  /// that motion sends it. "model" (default): closed loop the model's own levitated state, open
+  /// loop a quadratic through each channel's samples around the run's start.
   bool trigger_state_from_record = false;
   /// Whether channel `ch` is an input (a from_record coil current), not compared.
   bool Drives(const MeasurementChannel& ch) const {

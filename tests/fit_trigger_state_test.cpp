@@ -90,31 +90,32 @@ TEST(FitTriggerState, TheRecordsStateAtTheTriggerPredictsAMagnetRotorsDrop) {
   EXPECT_LT(seated_error, 0.01 * travel);
 }
 
-// Refused where it means nothing: an open-loop run (power_loss = "from_record") starts from
-// the record already, and without displacement channels there is no state to read.
-TEST(FitTriggerState, NeedsAClosedLoopAndDisplacements) {
+// Refused without displacement channels (there is no state to read); taken with
+// power_loss = "from_record", whose open-loop run then starts a lead window before the trigger.
+TEST(FitTriggerState, NeedsDisplacements) {
   const std::string base = "base = \"" + testing::ConfigPath(kRig) + "\"\n";
   const std::string table =
       "[measurement]\nsample_rate_Hz = 20000.0\ntrigger_time_s = 0.2\n"
       "trigger_state = \"record\"\n";
-  const auto error = [](const std::string& text) {
-    try {
-      LoadConfigFromString(text, "m.toml", {"amb.nde.flux_decay.enabled=true"});
-    } catch (const ConfigError& e) {
-      return std::string(e.what());
-    }
+  try {
+    LoadConfigFromString(
+        base + table + "[[measurement.channel]]\ncolumn = \"w\"\nquantity = \"rotor_speed\"\n",
+        "m.toml");
     ADD_FAILURE() << "loaded";
-    return std::string();
-  };
-  EXPECT_THAT(error(base + table + "power_loss = \"from_record\"\n" +
-                    "[[measurement.channel]]\ncolumn = \"i\"\nquantity = \"current\"\n"
-                    "amb = \"nde\"\naxis = \"x\"\n"),
-              ::testing::HasSubstr("m.toml:5: key 'measurement.trigger_state': expected \"model\" "
-                                   "with power_loss = \"from_record\""));
-  EXPECT_THAT(
-      error(base + table + "[[measurement.channel]]\ncolumn = \"w\"\nquantity = \"rotor_speed\"\n"),
-      ::testing::HasSubstr("m.toml:5: key 'measurement.trigger_state': expected \"model\", "
-                           "or a channel with quantity = \"displacement\""));
+  } catch (const ConfigError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("m.toml:5: key 'measurement.trigger_state': "
+                                               "expected \"model\", or a channel with quantity = "
+                                               "\"displacement\""));
+  }
+  const LoadedConfig open = LoadConfigFromString(
+      base + table + "power_loss = \"from_record\"\n" +
+          "[[measurement.channel]]\ncolumn = \"i\"\nquantity = \"current\"\namb = \"nde\"\n"
+          "axis = \"x\"\n[[measurement.channel]]\ncolumn = \"x\"\nquantity = "
+          "\"displacement\"\nsensor = \"nde\"\naxis = \"x\"\n",
+      "m.toml", {"amb.nde.flux_decay.enabled=true"});
+  ASSERT_TRUE(open.measurement.has_value());
+  EXPECT_TRUE(open.measurement->trigger_state_from_record);
+  EXPECT_EQ(open.measurement->power_loss, PowerLossSource::kFromRecord);
 }
 
 // A current that falls by a declared law after the trigger, sampled at 20 kHz with 5 mA of

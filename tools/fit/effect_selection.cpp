@@ -69,7 +69,7 @@ double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
   // Open loop the start state is fitted to a quadratic through each displacement channel near
   // the start: the noise leaves its value and slope uncertain (OpenLoopStartUncertainty). On a
   // plant that the held currents leave unstable that slope decides where the rotor drifts.
-  // A closed-loop run whose state at the trigger is fitted to a lead window of the record
+  // A run whose state at the trigger is fitted to a lead window of the record
   // (measurement.trigger_state) is as uncertain as a level and a slope fitted to N samples
   // over the window's length L: 1/sqrt(N) and sqrt(12/N)/L per unit of noise.
   std::vector<RecordRunOptions> starts;
@@ -77,7 +77,7 @@ double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
   if (!closed || m.trigger_state_from_record) {
     const double sigma = 3.0 * amplitude;  // the channels' median noise
     auto [value_per_sigma, slope_per_sigma] = OpenLoopStartUncertainty(r, cost.compare_from_s());
-    if (closed) {
+    if (m.trigger_state_from_record) {
       const double lead = TriggerStateLeadSeconds(r);
       const double samples = std::max(2.0, lead / r.SampleInterval());
       value_per_sigma = 1.0 / std::sqrt(samples);

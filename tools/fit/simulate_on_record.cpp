@@ -186,8 +186,12 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
   const bool closed = out.closed_loop;
   // Closed loop, the rig runs from time 0 as `ambdrop sim` runs it; open loop, from just before
   // the trigger.
-  const double t_start =
-      closed ? 0.0 : std::max(r.time_s.front(), out.trigger_time_s - options.lead_s);
+  // Open loop with measurement.trigger_state = "record", the run starts a lead window before
+  // the trigger whose samples pin its start through the model (lead_state_estimate.hpp).
+  const bool lead_fit_open = !closed && m.trigger_state_from_record && !options.initial_state;
+  const double lead =
+      lead_fit_open ? std::max(options.lead_s, TriggerStateLeadSeconds(r)) : options.lead_s;
+  const double t_start = closed ? 0.0 : std::max(r.time_s.front(), out.trigger_time_s - lead);
   const double t_end = r.time_s.back();
   if (out.trigger_time_s >= t_end) {
     throw std::runtime_error(
@@ -347,6 +351,10 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
       state.y(model.spin_angle_index()) = configured_spin * t_start;
     }
     if (options.state_correction.size() == 2 * n) state.y.head(2 * n) += options.state_correction;
+    if (lead_fit_open) {
+      state.y.head(2 * n) += LeadStateCorrection(declared, m, r, options, model, state,
+                                                 out.trigger_time_s, out.trigger_time_s - t_start);
+    }
   }
   // measurement.trigger_state = "record": over a lead window before the trigger the record's
   // currents drive the rotor, whose seen state is fitted to the window (lead_state_estimate.hpp).
