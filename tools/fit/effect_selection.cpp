@@ -69,20 +69,12 @@ double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
   // Open loop the start state is fitted to a quadratic through each displacement channel near
   // the start: the noise leaves its value and slope uncertain (OpenLoopStartUncertainty). On a
   // plant that the held currents leave unstable that slope decides where the rotor drifts.
-  // A run whose state at the trigger is fitted to a lead window of the record
-  // (measurement.trigger_state) is as uncertain as a level and a slope fitted to N samples
-  // over the window's length L: 1/sqrt(N) and sqrt(12/N)/L per unit of noise.
   std::vector<RecordRunOptions> starts;
   const bool closed = ClosedLoop(params, m, cost.run_options());
-  if (!closed || m.trigger_state_from_record) {
+  if (!closed && !m.trigger_state_from_record) {
     const double sigma = 3.0 * amplitude;  // the channels' median noise
-    auto [value_per_sigma, slope_per_sigma] = OpenLoopStartUncertainty(r, cost.compare_from_s());
-    if (m.trigger_state_from_record) {
-      const double lead = TriggerStateLeadSeconds(r);
-      const double samples = std::max(2.0, lead / r.SampleInterval());
-      value_per_sigma = 1.0 / std::sqrt(samples);
-      slope_per_sigma = std::sqrt(12.0 / samples) / lead;
-    }
+    const auto [value_per_sigma, slope_per_sigma] =
+        OpenLoopStartUncertainty(r, cost.compare_from_s());
     for (const double sign : {1.0, -1.0}) {
       RecordRunOptions o = cost.run_options();
       o.start_position_shift_m = sign * sigma * value_per_sigma;
@@ -92,15 +84,43 @@ double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
       starts.push_back(o);
     }
   }
-  std::vector<double> moved(variants.size() + starts.size(), 0.0);
+  // A state fitted to a lead window of the record (measurement.trigger_state) is as uncertain
+  // as that fit's covariance says: probes one standard deviation either way along each of its
+  // principal axes, whose moves add in quadrature (the errors along them are independent).
+  std::vector<RecordRunOptions> axes;
+  if (m.trigger_state_from_record) {
+    const SimulatedRecord base = SimulateOnRecord(params, m, r, cost.run_options());
+    for (const Eigen::VectorXd& axis : base.lead_uncertainty) {
+      for (const double sign : {1.0, -1.0}) {
+        RecordRunOptions o = cost.run_options();
+        o.lead_state_shift = sign * axis;
+        axes.push_back(o);
+      }
+    }
+  }
+  std::vector<double> moved(variants.size() + starts.size() + axes.size(), 0.0);
   ParallelFor(moved.size(), threads, [&](std::size_t i) {
-    const Eigen::VectorXd r_i =
-        i < variants.size()
-            ? cost.Residual(declared.With(variants[i]).params)
-            : cost.Residual(SimulateOnRecord(params, m, r, starts[i - variants.size()]));
+    Eigen::VectorXd r_i;
+    if (i < variants.size()) {
+      r_i = cost.Residual(declared.With(variants[i]).params);
+    } else if (i < variants.size() + starts.size()) {
+      r_i = cost.Residual(SimulateOnRecord(params, m, r, starts[i - variants.size()]));
+    } else {
+      r_i =
+          cost.Residual(SimulateOnRecord(params, m, r, axes[i - variants.size() - starts.size()]));
+    }
     moved[i] = OverallRms(cost, (r_i - residual_before).squaredNorm());
   });
-  return *std::max_element(moved.begin(), moved.end());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < variants.size() + starts.size(); ++i) {
+    worst = std::max(worst, moved[i]);
+  }
+  double along_axes = 0.0;
+  for (std::size_t k = 0; k + 1 < axes.size(); k += 2) {
+    const std::size_t i = variants.size() + starts.size() + k;
+    along_axes += std::pow(std::max(moved[i], moved[i + 1]), 2);
+  }
+  return std::max(worst, std::sqrt(along_axes));
 }
 
 }  // namespace

@@ -14,12 +14,12 @@ double TriggerStateLeadSeconds(const MeasuredRecord& record) {
   return std::max(6e-3, 40.0 * record.SampleInterval());
 }
 
-Eigen::VectorXd LeadStateCorrection(const ModelParams& declared, const MeasurementParams& m,
-                                    const MeasuredRecord& r, const RecordRunOptions& options,
-                                    const Model& model, const State& at_lead_start,
-                                    double trigger_s, double lead_s) {
+LeadStateFit FitLeadState(const ModelParams& declared, const MeasurementParams& m,
+                          const MeasuredRecord& r, const RecordRunOptions& options,
+                          const Model& model, const State& at_lead_start, double trigger_s,
+                          double lead_s) {
   const int n = model.modes();
-  const Eigen::VectorXd none = Eigen::VectorXd::Zero(2 * n);
+  const LeadStateFit none{Eigen::VectorXd::Zero(2 * n), {}};
   std::vector<std::size_t> channels;
   std::vector<Eigen::RowVectorXd> shape_rows;
   for (std::size_t c = 0; c < m.channels.size(); ++c) {
@@ -57,7 +57,8 @@ Eigen::VectorXd LeadStateCorrection(const ModelParams& declared, const Measureme
   o.start_position_shift_m = 0.0;
   o.start_velocity_shift_m_s = 0.0;
   o.initial_state = std::make_shared<const State>(at_lead_start);
-  o.state_correction = none;
+  o.state_correction = none.correction;
+  o.lead_state_shift = Eigen::VectorXd();
   const SimulatedRecord base = SimulateOnRecord(declared, m, r, o);
   if (base.status != StepStatus::kOk) return none;
 
@@ -94,21 +95,49 @@ Eigen::VectorXd LeadStateCorrection(const ModelParams& declared, const Measureme
     }
   }
   if (!jacobian.allFinite() || !e.allFinite()) return none;
-  // Columns scaled to unit norm, then the minimum-norm least-squares solution: directions the
-  // window cannot tell apart (below 1e-6 of the best seen) are left alone.
+  // Columns scaled to unit norm, then the minimum-norm least-squares solution through the
+  // pseudo-inverse: directions the window cannot tell apart (below 1e-6 of the best seen) are
+  // left alone.
   Eigen::VectorXd scale = jacobian.colwise().norm().transpose();
   const double largest = scale.maxCoeff();
   if (!(largest > 0.0)) return none;
   for (Eigen::Index k = 0; k < scale.size(); ++k) scale(k) = std::max(scale(k), 1e-12 * largest);
   const Eigen::MatrixXd scaled = jacobian * scale.cwiseInverse().asDiagonal();
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> solver(scaled);
-  solver.setThreshold(1e-6);
-  const Eigen::VectorXd alpha = solver.solve(e).cwiseQuotient(scale);
-  Eigen::VectorXd correction = none;
-  for (std::size_t k = 0; k < directions.size(); ++k) {
-    correction += alpha(static_cast<Eigen::Index>(k)) * directions[k];
+  const Eigen::JacobiSVD<Eigen::MatrixXd> jsvd(scaled, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::VectorXd& js = jsvd.singularValues();
+  if (!(js.size() > 0 && js(0) > 0.0)) return none;
+  Eigen::VectorXd inverse = Eigen::VectorXd::Zero(js.size());
+  for (Eigen::Index k = 0; k < js.size(); ++k) {
+    if (js(k) > 1e-6 * js(0)) inverse(k) = 1.0 / js(k);
   }
-  return correction.allFinite() ? correction : none;
+  const Eigen::VectorXd alpha =
+      (jsvd.matrixV() * inverse.asDiagonal() * (jsvd.matrixU().transpose() * e))
+          .cwiseQuotient(scale);
+  Eigen::MatrixXd to_state(2 * n, static_cast<Eigen::Index>(directions.size()));
+  for (std::size_t k = 0; k < directions.size(); ++k) {
+    to_state.col(static_cast<Eigen::Index>(k)) = directions[k];
+  }
+  LeadStateFit fit;
+  fit.correction = to_state * alpha;
+  if (!fit.correction.allFinite()) return none;
+  // Its covariance: the residual variance per sample times (J^T J)^-1; in the scaled columns
+  // that is V S^-2 V^T, so the principal axes are V's columns, one standard deviation being
+  // sigma / s_k along each.
+  const Eigen::VectorXd after = e - jacobian * alpha;
+  const double dof = std::max(1.0, static_cast<double>(e.size() - alpha.size()));
+  const double sigma = std::sqrt(after.squaredNorm() / dof);
+  std::vector<std::pair<double, Eigen::Index>> spread;
+  for (Eigen::Index k = 0; k < js.size(); ++k) {
+    if (inverse(k) > 0.0) spread.emplace_back(sigma * inverse(k), k);
+  }
+  std::sort(spread.begin(), spread.end(),
+            [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (std::size_t i = 0; i < spread.size() && i < 3; ++i) {
+    const Eigen::VectorXd axis =
+        (spread[i].first * jsvd.matrixV().col(spread[i].second)).cwiseQuotient(scale);
+    fit.uncertainty.push_back(to_state * axis);
+  }
+  return fit;
 }
 
 }  // namespace ambdrop

@@ -10,6 +10,8 @@
 // finite-difference sensitivities: the levitated motion is micrometres, where the plant is
 // linear). A window through the model pins the velocity far better than a local polynomial
 // when the rotor jitters at hundreds of hertz.
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "io/config_measurement.hpp"
@@ -23,13 +25,22 @@ namespace ambdrop {
 /// The lead window's length for a record: 6 ms and at least 40 samples.
 double TriggerStateLeadSeconds(const MeasuredRecord& record);
 
-/// The correction (modal positions then velocities, 2n) to add to `at_lead_start`, the
-/// model's state at `trigger_s - lead_s`. `options.start_position_shift_m` and
-/// `start_velocity_shift_m_s` shift the window's samples by a constant and by a ramp through the
-/// trigger (the start sensitivity's probes). Zero when the record gives nothing to fit.
-Eigen::VectorXd LeadStateCorrection(const ModelParams& declared, const MeasurementParams& m,
-                                    const MeasuredRecord& r, const RecordRunOptions& options,
-                                    const Model& model, const State& at_lead_start,
-                                    double trigger_s, double lead_s);
+/// The fit of the lead window: the correction (modal positions then velocities, 2n) to add to
+/// the model's state at the window's start, and how uncertain it is: the principal axes of its
+/// covariance (the samples' residual variance times (J^T J)^-1, mapped to the state), each
+/// scaled to one standard deviation, largest first (at most three). Zero and none when the
+/// record gives nothing to fit.
+struct LeadStateFit {
+  Eigen::VectorXd correction;
+  std::vector<Eigen::VectorXd> uncertainty;
+};
+
+/// The fit for `at_lead_start`, the model's state at `trigger_s - lead_s`.
+/// `options.start_position_shift_m` and `start_velocity_shift_m_s` shift the window's samples
+/// by a constant and by a ramp through the trigger.
+LeadStateFit FitLeadState(const ModelParams& declared, const MeasurementParams& m,
+                          const MeasuredRecord& r, const RecordRunOptions& options,
+                          const Model& model, const State& at_lead_start, double trigger_s,
+                          double lead_s);
 
 }  // namespace ambdrop

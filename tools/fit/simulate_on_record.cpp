@@ -352,8 +352,11 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
     }
     if (options.state_correction.size() == 2 * n) state.y.head(2 * n) += options.state_correction;
     if (lead_fit_open) {
-      state.y.head(2 * n) += LeadStateCorrection(declared, m, r, options, model, state,
-                                                 out.trigger_time_s, out.trigger_time_s - t_start);
+      const LeadStateFit fit = FitLeadState(declared, m, r, options, model, state,
+                                            out.trigger_time_s, out.trigger_time_s - t_start);
+      state.y.head(2 * n) += fit.correction;
+      if (options.lead_state_shift.size() == 2 * n) state.y.head(2 * n) += options.lead_state_shift;
+      out.lead_uncertainty = fit.uncertainty;
     }
   }
   // measurement.trigger_state = "record": over a lead window before the trigger the record's
@@ -431,9 +434,12 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
       power.Apply(failure, k, input);
     }
     if (k == lead_step) {
-      state.y.head(2 * n) +=
-          LeadStateCorrection(declared, m, r, options, model, state, out.trigger_time_s,
-                              static_cast<double>(model.trigger_step - k) * dt);
+      const LeadStateFit fit =
+          FitLeadState(declared, m, r, options, model, state, out.trigger_time_s,
+                       static_cast<double>(model.trigger_step - k) * dt);
+      state.y.head(2 * n) += fit.correction;
+      if (options.lead_state_shift.size() == 2 * n) state.y.head(2 * n) += options.lead_state_shift;
+      out.lead_uncertainty = fit.uncertainty;
       lead_driven = true;
     }
     if (controlled && k % substeps == 0) {

@@ -47,6 +47,9 @@ struct RecordRunOptions {
   /// added to it. Used by the lead estimate of measurement.trigger_state = "record".
   std::shared_ptr<const State> initial_state;
   Eigen::VectorXd state_correction;
+  /// measurement.trigger_state = "record": added to the lead window's fitted state (2n): the
+  /// start sensitivity's probes along that fit's uncertainty (SimulatedRecord::lead_uncertainty).
+  Eigen::VectorXd lead_state_shift;
 };
 
 /// Open loop: the initial state is fitted to a quadratic through each displacement channel's
@@ -66,6 +69,9 @@ struct SimulatedRecord {
   std::vector<std::vector<double>> values;
   StepStatus status = StepStatus::kOk;
   std::string failure;  ///< why the run stopped early, with a state dump; "" if it did not
+  /// measurement.trigger_state = "record": one standard deviation of the lead window's fitted
+  /// state along each of its (at most three) principal axes (lead_state_estimate.hpp).
+  std::vector<Eigen::VectorXd> lead_uncertainty;
 };
 
 /// The trigger time: given, or where every measured current starts to fall away from its
