@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "declared_off.hpp"
 #include "drop_run.hpp"
 #include "firmware_controller.hpp"
 #include "rig.hpp"
@@ -199,6 +200,19 @@ TEST(TruthFlexibleRig, AMagnetBiasKeepsPullingAfterPowerLoss) {
       EXPECT_NEAR(drop(magnet, s, t), pulled, 0.05 * pulled) << "sensor " << s;
     }
     EXPECT_GT(pulled, 1.08 * free_fall);  // the two are told apart
+  }
+}
+
+// declared_off lists a rigid rotor's and a PID's numbers: on this rig it says so instead of
+// drawing numbers the run does not use.
+TEST(TruthFlexibleRig, DeclaredOffRefusesARigItDoesNotList) {
+  try {
+    (void)DeclaredOffEntries(RigB());
+    ADD_FAILURE() << "listed";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("flexible shaft or a firmware controller"),
+              std::string::npos)
+        << e.what();
   }
 }
 

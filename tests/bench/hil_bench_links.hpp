@@ -151,6 +151,7 @@ class BenchCanLink final : public ControllerLink {
     out->sequence = sequence_;
     return true;
   }
+  const FrameMapCounters& counters() const noexcept { return counters_; }
   void SendSensors(const SensorReadings& readings, std::int64_t step, double) noexcept override {
     EmulatorOutputs outputs;
     outputs.sensor_xy_m = readings.reading_m;
@@ -172,9 +173,12 @@ class BenchCanLink final : public ControllerLink {
 /// handles what has arrived (waiting up to `timeout`); call it from one thread.
 class CanControllerStandIn {
  public:
+  /// `malformed_every` > 0: after every that many answers a malformed currents frame (the
+  /// currents id, 3 bytes: too short for its signals) follows on the bus.
   CanControllerStandIn(const Model& model, double period_s, CanBus* bus, ExchangeLog* log,
-                       std::int64_t substeps)
-      : pid_(model, period_s),
+                       std::int64_t substeps, int malformed_every = 0)
+      : malformed_every_(malformed_every),
+        pid_(model, period_s),
         bus_(bus),
         log_(log),
         substeps_(substeps),
@@ -224,10 +228,20 @@ class CanControllerStandIn {
         log_->answers_sample[n] = sample;
       }
       if (bus_->Send(out) == CanStatus::kOk) ++seq_;
+      if (malformed_every_ > 0 && seq_ % malformed_every_ == 0) {
+        CanFrame bad;
+        bad.id = kCurrentsId;
+        bad.fd = true;
+        bad.len = 3;
+        if (bus_->Send(bad) == CanStatus::kOk) ++malformed_sent_;
+      }
     }
   }
+  std::uint64_t malformed_sent() const noexcept { return malformed_sent_; }
 
  private:
+  int malformed_every_ = 0;
+  std::uint64_t malformed_sent_ = 0;
   ReferenceController pid_;
   CanBus* bus_;
   ExchangeLog* log_;
@@ -274,9 +288,12 @@ class BenchLcmLink final : public ControllerLink {
 /// for memq://, which is private to one lcm::LCM) that answers each sample.
 class LcmControllerStandIn {
  public:
+  /// `malformed_every` > 0: after every that many answers a malformed currents packet (bytes
+  /// that are no amb_currents_t: a wrong type hash) follows on the channel.
   LcmControllerStandIn(const Model& model, double period_s, lcm::LCM* lcm, ExchangeLog* log,
-                       std::int64_t substeps)
-      : pid_(model, period_s),
+                       std::int64_t substeps, int malformed_every = 0)
+      : malformed_every_(malformed_every),
+        pid_(model, period_s),
         lcm_(lcm),
         log_(log),
         substeps_(substeps),
@@ -309,9 +326,19 @@ class LcmControllerStandIn {
       log_->answers_sample[n] = sample;
     }
     if (lcm_->publish("AMBDROP_CURRENTS", &c) == 0) ++seq_;
+    if (malformed_every_ > 0 && seq_ % malformed_every_ == 0) {
+      const std::array<std::uint8_t, 24> garbage{0xde, 0xad, 0xbe, 0xef, 1, 2, 3, 4};
+      if (lcm_->publish("AMBDROP_CURRENTS", garbage.data(),
+                        static_cast<unsigned int>(garbage.size())) == 0) {
+        ++malformed_sent_;
+      }
+    }
   }
+  std::uint64_t malformed_sent() const noexcept { return malformed_sent_; }
 
  private:
+  int malformed_every_ = 0;
+  std::uint64_t malformed_sent_ = 0;
   ReferenceController pid_;
   lcm::LCM* lcm_;
   ExchangeLog* log_;

@@ -6,6 +6,7 @@
 //
 //   build/tests/hil_timing_bench [SECONDS=10] [--link=can|lcm|internal] [--lcm-url=URL]
 //       [--sched=other|fifo] [--priority=80] [--cpu=1] [--spin-us=0] [--load] [--header]
+//       [--malformed-every=N]
 //   build/tests/hil_timing_bench [SECONDS] --compute-only [--header]
 //
 // What the columns keep apart:
@@ -19,6 +20,11 @@
 // --compute-only runs the periods back to back without sleeping, the controller answered in
 // between (untimed) through the CAN double: the compute figure without any scheduling effect
 // except preemption.
+// --malformed-every=N (CAN or LCM): after every N answers the controller stand-in also sends a
+// malformed currents message (a frame of the currents id too short for its signals; a packet
+// whose bytes are no amb_currents_t), so N = 10 puts 10 % of faults at the controller rate
+// (issue 18 item 3). The emulator's link drops and counts each; the row and stderr say how
+// many were sent and counted, beside the deadlines.
 // --load: a thread pinned to the other CPU streams through 32 MB (cache and memory bandwidth
 // pressure plus a busy core). --link=lcm uses udpm: run it inside a private network namespace
 // (the script does), or pass --lcm-url=memq:// for the in-process bus.
@@ -62,13 +68,14 @@ struct Options {
   bool load = false;
   bool compute_only = false;
   bool header = false;
+  int malformed_every = 0;
 };
 
 [[noreturn]] void Usage(const std::string& problem) {
   std::fprintf(stderr,
                "%s\nusage: hil_timing_bench [SECONDS] [--link=can|lcm|internal] [--lcm-url=URL] "
                "[--sched=other|fifo] [--priority=P] [--cpu=C] [--spin-us=US] [--load] "
-               "[--compute-only] [--header]\n",
+               "[--compute-only] [--header] [--malformed-every=N]\n",
                problem.c_str());
   std::exit(64);
 }
@@ -101,6 +108,9 @@ Options Parse(int argc, char** argv) {
       o.cpu = static_cast<int>(ParseNumber(*v, "--cpu"));
     } else if (auto v = value("--spin-us=")) {
       o.spin_us = ParseNumber(*v, "--spin-us");
+    } else if (auto v = value("--malformed-every=")) {
+      o.malformed_every = static_cast<int>(ParseNumber(*v, "--malformed-every"));
+      if (o.malformed_every < 1) Usage("--malformed-every must be at least 1");
     } else if (arg == "--load") {
       o.load = true;
     } else if (arg == "--compute-only") {
@@ -278,7 +288,7 @@ void RunRealTime(const Options& o, Rig& rig) {
     controller_end = std::make_unique<CanBusDouble>(bus, FdSocket());
     can_link = std::make_unique<BenchCanLink>(emulator_end.get(), &rig.frame_map);
     can_controller = std::make_unique<CanControllerStandIn>(
-        rig.model, rig.period_s, controller_end.get(), &log, rig.substeps);
+        rig.model, rig.period_s, controller_end.get(), &log, rig.substeps, o.malformed_every);
     inner = can_link.get();
   } else if (o.link == "lcm") {
     LcmEndpointOptions lcm_options;
@@ -290,8 +300,8 @@ void RunRealTime(const Options& o, Rig& rig) {
       if (!controller_lcm->good()) Usage("LCM refused " + o.lcm_url + " (no multicast route?)");
       controller_side = controller_lcm.get();
     }
-    lcm_controller = std::make_unique<LcmControllerStandIn>(rig.model, rig.period_s,
-                                                            controller_side, &log, rig.substeps);
+    lcm_controller = std::make_unique<LcmControllerStandIn>(
+        rig.model, rig.period_s, controller_side, &log, rig.substeps, o.malformed_every);
     endpoint->Start();
     lcm_link = std::make_unique<BenchLcmLink>(endpoint.get(),
                                               static_cast<int>(rig.model.params.sensors.size()));
@@ -359,6 +369,22 @@ void RunRealTime(const Options& o, Rig& rig) {
                           : o.link == "lcm" ? "LCM "
                                             : "in-process PID";
   if (o.link == "lcm") link_name += memq ? "memq" : "udpm (loopback)";
+  // Faults sent by the stand-in and counted by the emulator's link.
+  std::uint64_t sent = 0, counted = 0;
+  if (can_controller) {
+    sent = can_controller->malformed_sent();
+    counted = can_link->counters().malformed;
+  } else if (lcm_controller) {
+    sent = lcm_controller->malformed_sent();
+    const LcmEndpointCounters c = endpoint->counters();
+    counted = c.malformed_decode + c.malformed_range + c.malformed_non_finite +
+              c.malformed_current_bound;
+  }
+  if (o.malformed_every > 0) {
+    link_name += ", " + std::to_string(100.0 / o.malformed_every).substr(0, 4) +
+                 " % malformed: " + std::to_string(sent) + " sent, " + std::to_string(counted) +
+                 " counted";
+  }
   // A rotor that crashed ends the run early: the row covers fewer periods than asked.
   if (session.stop() == HilStop::kDiverged) {
     link_name += ", diverged after " + std::to_string(result.periods) + " periods";
