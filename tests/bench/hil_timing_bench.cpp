@@ -377,8 +377,8 @@ void RunRealTime(const Options& o, Rig& rig) {
   } else if (lcm_controller) {
     sent = lcm_controller->malformed_sent();
     const LcmEndpointCounters c = endpoint->counters();
-    counted = c.malformed_decode + c.malformed_range + c.malformed_non_finite +
-              c.malformed_current_bound;
+    counted =
+        c.malformed_decode + c.malformed_range + c.malformed_non_finite + c.malformed_current_bound;
   }
   if (o.malformed_every > 0) {
     link_name += ", " + std::to_string(100.0 / o.malformed_every).substr(0, 4) +

@@ -72,10 +72,10 @@ std::vector<DeclaredEntry> DeclaredOffEntries(const Rig& rig) {
   // The list below names a rigid rotor's and a PID's numbers; a flexible shaft's are derived
   // from its segments and discs, and a firmware controller's are its sections.
   if (rig.shaft.enabled || rig.controller.firmware) {
-    throw std::runtime_error("declared_off lists the numbers of a rigid rotor held by a PID; rig '" +
-                             rig.name +
-                             "' has a flexible shaft or a firmware controller, whose numbers it "
-                             "does not list yet");
+    throw std::runtime_error(
+        "declared_off lists the numbers of a rigid rotor held by a PID; rig '" + rig.name +
+        "' has a flexible shaft or a firmware controller, whose numbers it "
+        "does not list yet");
   }
   std::vector<DeclaredEntry> out;
   out.reserve(64);  // `add` returns a reference to the entry it added: no reallocation
