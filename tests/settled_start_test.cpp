@@ -88,17 +88,26 @@ TEST(SettledStart, StartsOnTheSteadyOrbit) {
   EXPECT_LT(warm.settle_last_change_m, 0.05 * *std::max_element(settled.begin(), settled.end()));
 }
 
+// The unbalanced rig (settled for `settle_s`) with its power failing at 0.05 s, and a
+// displacement-only record of it.
+std::vector<std::string> Dropped(double settle_s) {
+  std::vector<std::string> truth = Unbalanced(settle_s);
+  truth.push_back("trigger.enabled=true");
+  truth.push_back("trigger.time_s=0.05");
+  return truth;
+}
+SyntheticMeasurement DisplacementRecord(const std::vector<std::string>& truth) {
+  MeasureOptions options;
+  options.channels.current = false;
+  return MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), options);
+}
+
 // A record made from the settled rig: `fit` runs the declared closed loop from time 0 as `sim`
 // does, so with the same settle_s its levitated prediction follows the record's orbit, and
 // without it the prediction is still building its orbit while the record's is steady.
 TEST(SettledStart, TheFitsClosedLoopSettlesAsSimDoes) {
-  std::vector<std::string> truth = Unbalanced(0.4);
-  truth.push_back("trigger.enabled=true");
-  truth.push_back("trigger.time_s=0.05");
-  MeasureOptions options;
-  options.channels.current = false;
-  const SyntheticMeasurement made =
-      MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), options);
+  const std::vector<std::string> truth = Dropped(0.4);
+  const SyntheticMeasurement made = DisplacementRecord(truth);
   const auto levitated_rms = [&](double settle_s) {
     std::vector<std::string> declared = truth;
     declared.push_back("simulation.settle_s=" + std::to_string(settle_s));
@@ -133,13 +142,8 @@ TEST(SettledStart, TheFitsClosedLoopSettlesAsSimDoes) {
 // predicts nothing of the record: every row NaN, and the fit's cost is the unreached one (the
 // run once returned no rows at all, and the fit read past them).
 TEST(SettledStart, AModelThatStopsWhileSettlingReachesNoRow) {
-  std::vector<std::string> truth = Unbalanced(0.0);
-  truth.push_back("trigger.enabled=true");
-  truth.push_back("trigger.time_s=0.05");
-  MeasureOptions options;
-  options.channels.current = false;
-  const SyntheticMeasurement made =
-      MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), options);
+  const std::vector<std::string> truth = Dropped(0.0);
+  const SyntheticMeasurement made = DisplacementRecord(truth);
   std::vector<std::string> declared = truth;
   declared.push_back("simulation.settle_s=0.2");
   declared.push_back("simulation.max_excursion_over_clearance=0.001");

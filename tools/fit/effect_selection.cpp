@@ -8,7 +8,6 @@
 #include <optional>
 
 #include "tools/fit/candidate_screen.hpp"
-#include "tools/fit/lead_state_estimate.hpp"
 #include "tools/fit/noise_floor.hpp"
 #include "tools/fit/parallel_for.hpp"
 

@@ -5,7 +5,6 @@
 #include <memory>
 #include <vector>
 
-#include <Eigen/QR>
 #include <Eigen/SVD>
 
 namespace ambdrop {

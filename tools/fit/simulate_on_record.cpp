@@ -318,6 +318,15 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
   std::optional<SensorEmulator> controller_sensors;
   std::int64_t substeps = 1;
   State state;
+  // measurement.trigger_state = "record": the state `lead` seconds before the trigger moved to
+  // the lead window's fit (plus a start-sensitivity probe's shift), and that fit's uncertainty.
+  const auto fit_lead_window = [&](double lead) {
+    const LeadStateFit fit =
+        FitLeadState(declared, m, r, options, model, state, out.trigger_time_s, lead);
+    state.y.head(2 * n) += fit.correction;
+    if (options.lead_state_shift.size() == 2 * n) state.y.head(2 * n) += options.lead_state_shift;
+    out.lead_uncertainty = fit.uncertainty;
+  };
   const bool controlled = closed && model.params.controller.kind == ControllerKind::kInternalPid;
   if (controlled) {
     substeps = ControllerSubsteps(model);
@@ -351,13 +360,7 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
       state.y(model.spin_angle_index()) = configured_spin * t_start;
     }
     if (options.state_correction.size() == 2 * n) state.y.head(2 * n) += options.state_correction;
-    if (lead_fit_open) {
-      const LeadStateFit fit = FitLeadState(declared, m, r, options, model, state,
-                                            out.trigger_time_s, out.trigger_time_s - t_start);
-      state.y.head(2 * n) += fit.correction;
-      if (options.lead_state_shift.size() == 2 * n) state.y.head(2 * n) += options.lead_state_shift;
-      out.lead_uncertainty = fit.uncertainty;
-    }
+    if (lead_fit_open) fit_lead_window(out.trigger_time_s - t_start);
   }
   // measurement.trigger_state = "record": over a lead window before the trigger the record's
   // currents drive the rotor, whose seen state is fitted to the window (lead_state_estimate.hpp).
@@ -434,12 +437,7 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
       power.Apply(failure, k, input);
     }
     if (k == lead_step) {
-      const LeadStateFit fit =
-          FitLeadState(declared, m, r, options, model, state, out.trigger_time_s,
-                       static_cast<double>(model.trigger_step - k) * dt);
-      state.y.head(2 * n) += fit.correction;
-      if (options.lead_state_shift.size() == 2 * n) state.y.head(2 * n) += options.lead_state_shift;
-      out.lead_uncertainty = fit.uncertainty;
+      fit_lead_window(static_cast<double>(model.trigger_step - k) * dt);
       lead_driven = true;
     }
     if (controlled && k % substeps == 0) {

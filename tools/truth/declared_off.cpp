@@ -39,19 +39,10 @@ double Rounded(double v) {
   return std::stod(fmt::format("{:.5g}", v));
 }
 
-/// Every hardware station of the rig (AMBs, sensors, TDBs), for the station draws' neighbours.
-std::vector<double> Stations(const Rig& rig) {
-  std::vector<double> z;
-  for (const AmbRig& a : rig.ambs) z.push_back(a.position_m);
-  for (const SensorRig& s : rig.sensors) z.push_back(s.position_m);
-  for (const TdbRig& t : rig.tdbs) z.push_back(t.position_m);
-  return z;
-}
-
 /// The distance from z to the nearest other station (a station at z itself is z's own).
 double NearestOtherStation(const Rig& rig, double z) {
   double nearest = std::numeric_limits<double>::infinity();
-  for (const double s : Stations(rig)) {
+  for (const double s : HardwareStations(rig)) {
     const double d = std::abs(s - z);
     if (d > 0.0) nearest = std::min(nearest, d);
   }

@@ -17,23 +17,16 @@ double AmbAxisForce(const AmbRig& a, double coil_plus_A, double coil_minus_A, do
 
 namespace {
 
-std::vector<double> Stations(const Rig& r) {
-  std::vector<double> z;
-  for (const AmbRig& a : r.ambs) z.push_back(a.position_m);
-  for (const SensorRig& s : r.sensors) z.push_back(s.position_m);
-  for (const TdbRig& t : r.tdbs) z.push_back(t.position_m);
-  return z;
-}
-
 RotorModes ModesOf(const Rig& r) {
-  return r.shaft.enabled ? FlexibleRotorModes(r.shaft, Stations(r)) : RigidRotorModes(r.rotor);
+  return r.shaft.enabled ? FlexibleRotorModes(r.shaft, HardwareStations(r))
+                         : RigidRotorModes(r.rotor);
 }
 
 }  // namespace
 
 Plant::Plant(const Rig& rig) : rig_(rig), modes_(ModesOf(rig)) {
   layout_.n = modes_.n;
-  std::vector<double> z = Stations(rig);
+  std::vector<double> z = HardwareStations(rig);
   z.push_back(rig.rotor.centre_of_mass_m);
   z.push_back(rig.side_pull.position_m);
   z.push_back(rig.unbalance.couple_planes_m[0]);

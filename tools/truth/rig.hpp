@@ -213,6 +213,9 @@ struct Rig {
 /// std::runtime_error naming the key on a missing or malformed value.
 Rig ReadRig(const std::string& path);
 
+/// Every hardware station of the rig (AMBs, sensors, TDBs), in that order.
+std::vector<double> HardwareStations(const Rig& rig);
+
 /// Checks the numbers are physical (positive masses, gaps, rates ...); throws naming the key.
 void CheckRig(const Rig& rig);
 

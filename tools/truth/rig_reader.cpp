@@ -224,6 +224,14 @@ Rig ReadRig(const std::string& path) {
   return rig;
 }
 
+std::vector<double> HardwareStations(const Rig& rig) {
+  std::vector<double> z;
+  for (const AmbRig& a : rig.ambs) z.push_back(a.position_m);
+  for (const SensorRig& s : rig.sensors) z.push_back(s.position_m);
+  for (const TdbRig& t : rig.tdbs) z.push_back(t.position_m);
+  return z;
+}
+
 void CheckRig(const Rig& rig) {
   Positive(rig.step_s, "integration_step_s");
   Positive(rig.rotor.mass_kg, "rotor.mass_kg");
