@@ -7,7 +7,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -201,6 +204,35 @@ TEST(TruthFlexibleRig, AMagnetBiasKeepsPullingAfterPowerLoss) {
     }
     EXPECT_GT(pulled, 1.08 * free_fall);  // the two are told apart
   }
+}
+
+// Every number of the rig file is checked before it becomes a count or a frequency: a mode
+// count of 1e300 (once cast to int unchecked) and a prewarp above half the controller rate are
+// refused, naming the key.
+TEST(TruthFlexibleRig, RigNumbersAreCheckedBeforeUse) {
+  std::string path = AMBDROP_SOURCE_DIR;
+  path.append("/tools/truth/rigs/flexible_pm_b.json");
+  std::stringstream text;
+  text << std::ifstream(path).rdbuf();
+  const auto refused = [&](const std::string& from, const std::string& to) {
+    std::string edited = text.str();
+    const std::size_t at = edited.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    edited.replace(at, from.size(), to);
+    const std::string file =
+        (std::filesystem::temp_directory_path() / "truth_rig_checked.json").string();
+    std::ofstream(file) << edited;
+    try {
+      (void)ReadRig(file);
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("loaded");
+  };
+  EXPECT_NE(refused("\"bending_modes\": 3", "\"bending_modes\": 1e300").find("bending_modes"),
+            std::string::npos);
+  EXPECT_NE(refused("\"prewarp_Hz\": 430.0", "\"prewarp_Hz\": 3000.0").find("prewarp_Hz"),
+            std::string::npos);
 }
 
 // declared_off lists a rigid rotor's and a PID's numbers: on this rig it says so instead of

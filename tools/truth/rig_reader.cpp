@@ -58,7 +58,11 @@ FlexibleShaftRig ReadShaft(const JsonValue& j) {
   shaft.start_m = j.Number("start_m", 0.0);
   shaft.youngs_modulus_Pa = j.Number("youngs_modulus_Pa");
   shaft.density_kg_m3 = j.Number("density_kg_m3");
-  shaft.bending_modes = static_cast<int>(j.Number("bending_modes"));
+  const double modes = j.Number("bending_modes");
+  if (!(modes >= 0.0 && modes <= 40.0) || modes != std::floor(modes)) {
+    throw std::runtime_error(j.At("bending_modes").path() + ": expected a whole number 0..40");
+  }
+  shaft.bending_modes = static_cast<int>(modes);
   shaft.modal_damping_ratio = j.Number("modal_damping_ratio", 0.0);
   for (const JsonValue& s : j.At("segments").Items()) {
     ShaftSegmentRig seg;
@@ -273,6 +277,47 @@ void CheckRig(const Rig& rig) {
   }
   if (rig.controller.amplifier.enabled) {
     Positive(rig.controller.amplifier.bandwidth_Hz, "controller.amplifier.bandwidth_Hz");
+  }
+  for (const DiscRig& d : rig.shaft.discs) {
+    Positive(d.mass_kg, "rotor.shaft.discs mass_kg");
+    Positive(d.transverse_inertia_kg_m2, "rotor.shaft.discs transverse_inertia_kg_m2");
+    Positive(d.polar_inertia_kg_m2, "rotor.shaft.discs polar_inertia_kg_m2");
+  }
+  if (rig.shaft.enabled &&
+      !(rig.shaft.modal_damping_ratio >= 0.0 && rig.shaft.modal_damping_ratio < 1.0)) {
+    throw std::runtime_error("rotor.shaft.modal_damping_ratio: expected 0 <= zeta < 1");
+  }
+  const double nyquist_Hz = 0.5 * rig.controller.rate_Hz;
+  for (const FirmwareSectionRig& f : rig.controller.sections) {
+    using K = FirmwareSectionRig::Kind;
+    if (f.kind == K::kPd) {
+      for (const double v : {f.kp, f.kd_s, f.derivative_filter_s}) {
+        if (!(std::isfinite(v) && v >= 0.0)) {
+          throw std::runtime_error("controller.sections pd: kp, kd_s, derivative_filter_s >= 0");
+        }
+      }
+    } else if (f.kind == K::kLead) {
+      Positive(f.zero_Hz, "controller.sections lead zero_Hz");
+      Positive(f.pole_Hz, "controller.sections lead pole_Hz");
+    } else {
+      Positive(f.frequency_Hz, "controller.sections notch frequency_Hz");
+      Positive(f.pole_damping, "controller.sections notch pole_damping");
+      if (!(std::isfinite(f.zero_damping) && f.zero_damping >= 0.0)) {
+        throw std::runtime_error("controller.sections notch zero_damping: expected >= 0");
+      }
+    }
+    if (!(std::isfinite(f.prewarp_Hz) && f.prewarp_Hz >= 0.0 && f.prewarp_Hz < nyquist_Hz)) {
+      throw std::runtime_error(
+          "controller.sections prewarp_Hz: expected 0 (none) or below half "
+          "the controller rate");
+    }
+  }
+  for (const double v : {rig.controller.amplifier.slew_rate_A_per_s, rig.coast_down.viscous_N_m_s,
+                         rig.coast_down.windage_N_m_s2}) {
+    if (!(std::isfinite(v) && v >= 0.0)) {
+      throw std::runtime_error(
+          "controller.amplifier.slew_rate_A_per_s, coast_down.*: expected finite, >= 0");
+    }
   }
   if (rig.controller.firmware && rig.controller.sections.empty()) {
     throw std::runtime_error("controller.sections: a firmware controller needs a section");
