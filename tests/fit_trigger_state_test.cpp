@@ -39,15 +39,16 @@ ModelParams MagnetRig() {
 }
 
 // RMS over the displacement channels of record - prediction from the trigger to 8 ms after.
-double EarlyDropError(const SyntheticMeasurement& made, const SimulatedRecord& sim) {
+double EarlyDropError(const MeasuredRecord& record, const MeasurementParams& m,
+                      const SimulatedRecord& sim) {
   double sum = 0.0;
   std::size_t n = 0;
-  for (std::size_t c = 0; c < made.measurement.channels.size(); ++c) {
-    if (made.measurement.channels[c].quantity != MeasuredQuantity::kDisplacement) continue;
-    for (std::size_t j = 0; j < made.record.time_s.size(); ++j) {
-      const double t = made.record.time_s[j];
+  for (std::size_t c = 0; c < m.channels.size(); ++c) {
+    if (m.channels[c].quantity != MeasuredQuantity::kDisplacement) continue;
+    for (std::size_t j = 0; j < record.time_s.size(); ++j) {
+      const double t = record.time_s[j];
       if (t < kTrigger_s || t > kTrigger_s + 8e-3) continue;
-      const double e = made.record.values[c][j] - sim.values[c][j];
+      const double e = record.values[c][j] - sim.values[c][j];
       sum += e * e;
       ++n;
     }
@@ -69,8 +70,8 @@ TEST(FitTriggerState, TheRecordsStateAtTheTriggerPredictsAMagnetRotorsDrop) {
   const SimulatedRecord seated = SimulateOnRecord(truth, from_record, made.record, {});
   ASSERT_TRUE(own.closed_loop && seated.closed_loop);
   ASSERT_EQ(seated.failure, "");
-  const double own_error = EarlyDropError(made, own);
-  const double seated_error = EarlyDropError(made, seated);
+  const double own_error = EarlyDropError(made.record, made.measurement, own);
+  const double seated_error = EarlyDropError(made.record, made.measurement, seated);
   // How far the rotor went in those 8 ms, for scale.
   double travel = 0.0;
   for (std::size_t c = 0; c < made.measurement.channels.size(); ++c) {
@@ -88,6 +89,28 @@ TEST(FitTriggerState, TheRecordsStateAtTheTriggerPredictsAMagnetRotorsDrop) {
   EXPECT_GT(travel, 20e-6);
   EXPECT_LT(seated_error, 0.6 * own_error);
   EXPECT_LT(seated_error, 0.01 * travel);
+  EXPECT_THAT(seated.lead_fit, ::testing::HasSubstr("displacement channels over the 6 ms"));
+  EXPECT_EQ(own.lead_fit, "");
+
+  // A record that starts 0.1 ms before the trigger has two samples per channel in the lead
+  // window, too few to fit a state: the run keeps the model's own state, says so, and drives
+  // the rotor by the record's currents only where the record has them.
+  MeasuredRecord late = made.record;
+  std::size_t first = 0;
+  while (late.time_s[first] < kTrigger_s - 0.1e-3) ++first;
+  const auto from_first = [first](auto& v) { v.erase(v.begin(), v.begin() + first); };
+  from_first(late.time_s);
+  for (std::vector<double>& column : late.values) from_first(column);
+  const SimulatedRecord unfitted = SimulateOnRecord(truth, from_record, late, {});
+  EXPECT_THAT(unfitted.lead_fit, ::testing::StartsWith("not fitted: "));
+  EXPECT_THAT(unfitted.lead_fit, ::testing::HasSubstr("fewer than twice"));
+  EXPECT_TRUE(unfitted.lead_uncertainty.empty());
+  const SimulatedRecord late_own = SimulateOnRecord(truth, from_model, late, {});
+  const double unfitted_error = EarlyDropError(late, made.measurement, unfitted);
+  const double late_own_error = EarlyDropError(late, made.measurement, late_own);
+  std::printf("late record: the model's own start %.3g m, unfitted lead %.3g m\n", late_own_error,
+              unfitted_error);
+  EXPECT_LT(unfitted_error, 1.5 * late_own_error);
 }
 
 // Refused without displacement channels (there is no state to read); taken with

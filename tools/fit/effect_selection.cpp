@@ -699,6 +699,15 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
                   "longer record would)";
     }
   }
+  if (cost.measurement().trigger_state_from_record) {
+    s.trigger_state = cost.Simulate(cost.declared()).lead_fit;
+    // A start left unfitted is the model's own levitated state: the residual then carries the
+    // record's jitter at the trigger, which the verdict must not hide.
+    if (s.trigger_state.rfind("not fitted", 0) == 0) {
+      s.reason += "; the state at the trigger was " + s.trigger_state +
+                  " (the model's own levitated state was used)";
+    }
+  }
   return s;
 }
 

@@ -159,6 +159,9 @@ struct Selection {
   double rms_after = 0.0;
   std::string verdict;  ///< explained | partly_explained | no_effect_needed | unexplained
   std::string reason;   ///< one sentence: why this verdict
+  /// measurement.trigger_state = "record": what the lead window's fit of the declared model
+  /// did, or why it kept the model's own state (LeadStateFit::note); "" otherwise.
+  std::string trigger_state;
 };
 
 /// What the residual is judged against: the noise floor's multiple, twice the model floor and

@@ -141,6 +141,7 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     if (m.Drives(ch)) json.String(ch.column);
   }
   json.EndArray();
+  if (m.trigger_state_from_record) json.Key("trigger_state_fit").String(s.trigger_state);
   json.Key("noise_floor").Number(s.noise_floor);
   json.Key("model_floor").Number(s.model_floor);
   json.Key("step_sensitivity").Number(s.step_sensitivity);
@@ -327,6 +328,10 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
       s.rms_before, s.rms_after, s.noise_floor, AboveNoise(s.rms_before, s.noise_floor),
       AboveNoise(s.rms_after, s.noise_floor));
   md += FromRecordNote(params, m);
+  if (m.trigger_state_from_record) {
+    md += fmt::format("The state at the trigger (measurement.trigger_state = \"record\"): {}.\n\n",
+                      s.trigger_state);
+  }
   if (o.step != nullptr) {
     md += fmt::format("Every run of the fit took a step of {:.3g} s (declared {:.3g} s): {}.\n\n",
                       o.step->step_s, o.step->declared_s, o.step->why);

@@ -10,6 +10,7 @@
 // finite-difference sensitivities: the levitated motion is micrometres, where the plant is
 // linear). A window through the model pins the velocity far better than a local polynomial
 // when the rotor jitters at hundreds of hertz.
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -33,6 +34,11 @@ double TriggerStateLeadSeconds(const MeasuredRecord& record);
 struct LeadStateFit {
   Eigen::VectorXd correction;
   std::vector<Eigen::VectorXd> uncertainty;
+  /// What was fitted ("N samples of M displacement channels over L ms, K directions"), or why
+  /// nothing was and the model's own state was kept ("not fitted: ..."): the fit reports it,
+  /// since a start left unfitted changes what the residual means.
+  std::string note;
+  bool fitted = false;
 };
 
 /// The fit for `at_lead_start`, the model's state at `trigger_s - lead_s`.

@@ -326,6 +326,7 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
     state.y.head(2 * n) += fit.correction;
     if (options.lead_state_shift.size() == 2 * n) state.y.head(2 * n) += options.lead_state_shift;
     out.lead_uncertainty = fit.uncertainty;
+    out.lead_fit = fit.note;
   };
   const bool controlled = closed && model.params.controller.kind == ControllerKind::kInternalPid;
   if (controlled) {
@@ -364,9 +365,12 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
   }
   // measurement.trigger_state = "record": over a lead window before the trigger the record's
   // currents drive the rotor, whose seen state is fitted to the window (lead_state_estimate.hpp).
-  const double lead_s = TriggerStateLeadSeconds(r);
-  const std::int64_t lead_steps = static_cast<std::int64_t>(std::llround(lead_s / dt));
-  const std::int64_t lead_step = closed && m.trigger_state_from_record
+  // The window lies in the record: before its first row there are no currents to drive with.
+  const double in_record_s = std::max(0.0, out.trigger_time_s - r.time_s.front());
+  const std::int64_t lead_steps =
+      std::min(static_cast<std::int64_t>(std::llround(TriggerStateLeadSeconds(r) / dt)),
+               static_cast<std::int64_t>(std::floor(in_record_s / dt + 1e-6)));
+  const std::int64_t lead_step = closed && m.trigger_state_from_record && lead_steps > 0
                                      ? std::max<std::int64_t>(0, model.trigger_step - lead_steps)
                                      : -1;
   bool lead_driven = false;

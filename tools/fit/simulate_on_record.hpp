@@ -72,6 +72,9 @@ struct SimulatedRecord {
   /// measurement.trigger_state = "record": one standard deviation of the lead window's fitted
   /// state along each of its (at most three) principal axes (lead_state_estimate.hpp).
   std::vector<Eigen::VectorXd> lead_uncertainty;
+  /// ... and what that fit did, or why it kept the model's own state (LeadStateFit::note);
+  /// "" without measurement.trigger_state = "record".
+  std::string lead_fit;
 };
 
 /// The trigger time: given, or where every measured current starts to fall away from its
