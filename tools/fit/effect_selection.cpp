@@ -85,15 +85,29 @@ double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
   }
   // A state fitted to a lead window of the record (measurement.trigger_state) is as uncertain
   // as that fit's covariance says: probes one standard deviation either way along each of its
-  // principal axes, whose moves add in quadrature (the errors along them are independent).
+  // principal axes, and along each held current's, whose moves add in quadrature (the errors
+  // along them are independent).
   std::vector<RecordRunOptions> axes;
   if (m.trigger_state_from_record) {
     const SimulatedRecord base = SimulateOnRecord(params, m, r, cost.run_options());
     for (const Eigen::VectorXd& axis : base.lead_uncertainty) {
       for (const double sign : {1.0, -1.0}) {
         RecordRunOptions o = cost.run_options();
-        o.lead_state_shift = sign * axis;
+        o.trigger_state_shift = sign * axis;
         axes.push_back(o);
+      }
+    }
+    // And the currents the coils held, as uncertain as the law's fit to their samples: on a
+    // magnet-biased rotor 1 mA more at one AMB moved the drop's first 8 ms by 1.5 um.
+    for (std::size_t a = 0; a < kMaxAmbs; ++a) {
+      for (int axis = 0; axis < 2; ++axis) {
+        const double sd = base.held_current_sd_A[a][axis];
+        if (!(sd > 0.0)) continue;
+        for (const double sign : {1.0, -1.0}) {
+          RecordRunOptions o = cost.run_options();
+          o.held_current_shift_A[a][axis] = sign * sd;
+          axes.push_back(o);
+        }
       }
     }
   }

@@ -27,8 +27,9 @@ double HeldCurrentWindowSeconds(const MeasuredRecord& r) {
   return std::min(2e-3, 40.0 * r.SampleInterval());
 }
 
-double HeldCurrentByLaw(const MeasuredRecord& r, int column, double trigger_s,
-                        const AmbParams& amb) {
+double HeldCurrentByLaw(const MeasuredRecord& r, int column, double trigger_s, const AmbParams& amb,
+                        double* sd_A) {
+  if (sd_A != nullptr) *sd_A = 0.0;
   const double reading = HeldCurrentAtTrigger(r, column, trigger_s, true);
   const std::vector<double>& ts = r.time_s;
   const std::vector<double>& v = r.values[static_cast<std::size_t>(column)];
@@ -55,6 +56,21 @@ double HeldCurrentByLaw(const MeasuredRecord& r, int column, double trigger_s,
     c0 += step;
     if (!std::isfinite(c0)) return reading;
     if (std::abs(step) <= 1e-12 * (1.0 + std::abs(c0))) break;
+  }
+  if (sd_A != nullptr) {
+    double sse = 0.0, jtj = 0.0;
+    std::size_t count = 0;
+    for (auto j = static_cast<std::size_t>(first); j < ts.size(); ++j) {
+      const double t = ts[j] - trigger_s;
+      if (t > window + slack) break;
+      const double slope = (law(c0 + h, t) - law(c0 - h, t)) / (2.0 * h);
+      sse += std::pow(v[j] - law(c0, t), 2);
+      jtj += slope * slope;
+      ++count;
+    }
+    if (count > 1 && jtj > 0.0) {
+      *sd_A = std::sqrt(sse / static_cast<double>(count - 1) / jtj);
+    }
   }
   return c0;
 }

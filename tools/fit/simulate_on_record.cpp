@@ -38,6 +38,25 @@ double ValueAt(const MeasuredRecord& r, int c, double t) {
   return v[j - 1] + w * (v[j] - v[j - 1]);
 }
 
+}  // namespace
+
+double LeadCurrentCorrection::At(const MeasuredRecord& r, std::size_t amb, int axis,
+                                 double t) const {
+  const std::vector<double>& v = A[amb][static_cast<std::size_t>(axis)];
+  if (v.empty()) return 0.0;
+  const std::vector<double>& ts = r.time_s;
+  const std::size_t last = first_row + v.size() - 1;
+  if (t < ts[first_row] || t > ts[last]) return 0.0;
+  const auto hi = std::upper_bound(ts.begin() + static_cast<std::ptrdiff_t>(first_row),
+                                   ts.begin() + static_cast<std::ptrdiff_t>(last) + 1, t);
+  const std::size_t j = static_cast<std::size_t>(hi - ts.begin());
+  if (j > last) return v.back();
+  const double w = (t - ts[j - 1]) / (ts[j] - ts[j - 1]);
+  return v[j - 1 - first_row] + w * (v[j - first_row] - v[j - 1 - first_row]);
+}
+
+namespace {
+
 // Least-squares slope and value at t0 of column c over the samples within +-half of t0.
 // The rows within `half` of t0, and their normal matrix for value, slope and curvature.
 struct LocalRows {
@@ -264,18 +283,24 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
           ch.InWindow(out.trigger_time_s, out.trigger_time_s) &&
           ch.InWindow(out.trigger_time_s + 2.0 * r.SampleInterval(), out.trigger_time_s);
       held_A[a][axis] = decay_seen
-                            ? HeldCurrentByLaw(r, c, out.trigger_time_s, model.params.ambs[a])
+                            ? HeldCurrentByLaw(r, c, out.trigger_time_s, model.params.ambs[a],
+                                               &out.held_current_sd_A[a][axis])
                             : HeldCurrentAtTrigger(r, c, out.trigger_time_s, false);
+      held_A[a][axis] += options.held_current_shift_A[a][axis];
     }
   }
   const ControlInput static_load = StaticLoadInput(model);
   ControlInput input = static_load;
+  // The lead window's corrections of the measured currents: the options' (a sensitivity run of
+  // the lead estimate), or the estimate's own once it is made.
+  std::shared_ptr<const LeadCurrentCorrection> correction = options.lead_current_correction;
   const auto measured_currents = [&](double t_record, bool keep_unmeasured) {
     for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
       for (int axis = 0; axis < 2; ++axis) {
         const int c = current_column[a][axis];
         if (c >= 0) {
-          input.amb[a].current_A[axis] = ValueAt(r, c, t_record);
+          input.amb[a].current_A[axis] =
+              ValueAt(r, c, t_record) + (correction ? correction->At(r, a, axis, t_record) : 0.0);
         } else if (!keep_unmeasured) {
           input.amb[a].current_A[axis] = static_load.amb[a].current_A[axis];
         }
@@ -324,7 +349,7 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
     const LeadStateFit fit =
         FitLeadState(declared, m, r, options, model, state, out.trigger_time_s, lead);
     state.y.head(2 * n) += fit.correction;
-    if (options.lead_state_shift.size() == 2 * n) state.y.head(2 * n) += options.lead_state_shift;
+    if (fit.current_correction) correction = fit.current_correction;
     out.lead_uncertainty = fit.uncertainty;
     out.lead_fit = fit.note;
   };
@@ -389,7 +414,9 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
   Observation obs;
   SensorReadings readings;
   std::size_t row = out.first_row;
+  if (options.keep_states) out.states.assign(record_rows, Eigen::VectorXd());
   const auto record_row = [&](std::size_t j) {
+    if (options.keep_states) out.states[j] = state.y.head(2 * n);
     sim.Observe(state, &obs);
     sensors.Sample(obs, &readings);
     for (std::size_t c = 0; c < m.channels.size(); ++c) {
@@ -435,6 +462,9 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
     const double t_record = t_start + static_cast<double>(k) * dt;
     // Power first, as `ambdrop sim` applies it: the controller's update of this step comes after.
     if (k == model.trigger_step) {
+      if (options.trigger_state_shift.size() == 2 * n) {
+        state.y.head(2 * n) += options.trigger_state_shift;
+      }
       // What flowed when power failed is what was measured then: a controller answers its
       // sensors' noise, so the model's own command at that instant is off by that jitter.
       held_currents();

@@ -3,6 +3,8 @@
 // record's time base. The run starts a short lead before the trigger from the state the
 // displacement channels show then: AMB currents drive an open-loop, unstable plant, so a run
 // started long before the trigger would drift away from the measurement on its own.
+#include <array>
+#include <cstddef>
 #include <limits>
 #include <memory>
 #include <string>
@@ -26,6 +28,18 @@ enum class PreTrigger {
   kMeasuredCurrents,  ///< always the measured currents, from `lead_s` before the trigger
 };
 
+/// measurement.trigger_state = "record": corrections to the measured currents over the lead
+/// window (lead_state_estimate.hpp): their noise, through a plant that the measured currents
+/// drive open loop and that a magnet's bias makes unstable, would move the state at the trigger.
+struct LeadCurrentCorrection {
+  std::size_t first_row = 0;
+  /// [amb][axis], by row from first_row (empty: none), interpolated between rows as the
+  /// currents are.
+  std::array<std::array<std::vector<double>, 2>, kMaxAmbs> A;
+  /// The correction of an AMB axis at record time t (0 outside its rows).
+  double At(const MeasuredRecord& r, std::size_t amb, int axis, double t) const;
+};
+
 struct RecordRunOptions {
   PreTrigger pre_trigger = PreTrigger::kAuto;
   double lead_s = 2e-3;  ///< open loop: simulated time before the trigger
@@ -47,9 +61,17 @@ struct RecordRunOptions {
   /// added to it. Used by the lead estimate of measurement.trigger_state = "record".
   std::shared_ptr<const State> initial_state;
   Eigen::VectorXd state_correction;
-  /// measurement.trigger_state = "record": added to the lead window's fitted state (2n): the
-  /// start sensitivity's probes along that fit's uncertainty (SimulatedRecord::lead_uncertainty).
-  Eigen::VectorXd lead_state_shift;
+  /// Added to the measured currents that drive the run before the trigger (null: none).
+  std::shared_ptr<const LeadCurrentCorrection> lead_current_correction;
+  /// measurement.trigger_state = "record": added to the state at the trigger (2n, modal
+  /// positions then velocities): the start sensitivity's probes along the uncertainty of the
+  /// lead window's estimate (SimulatedRecord::lead_uncertainty).
+  Eigen::VectorXd trigger_state_shift;
+  /// Added to the current each measured AMB axis held when the power failed ([amb][axis]):
+  /// the start sensitivity's probes of SimulatedRecord::held_current_sd_A.
+  std::array<std::array<double, 2>, kMaxAmbs> held_current_shift_A{};
+  /// Keep the modal positions and velocities at every simulated row (SimulatedRecord::states).
+  bool keep_states = false;
 };
 
 /// Open loop: the initial state is fitted to a quadratic through each displacement channel's
@@ -69,9 +91,15 @@ struct SimulatedRecord {
   std::vector<std::vector<double>> values;
   StepStatus status = StepStatus::kOk;
   std::string failure;  ///< why the run stopped early, with a state dump; "" if it did not
-  /// measurement.trigger_state = "record": one standard deviation of the lead window's fitted
-  /// state along each of its (at most three) principal axes (lead_state_estimate.hpp).
+  /// measurement.trigger_state = "record": one standard deviation of the estimated state at
+  /// the trigger along each of its (at most three) principal axes (lead_state_estimate.hpp).
   std::vector<Eigen::VectorXd> lead_uncertainty;
+  /// The standard error of the current each AMB axis held when the power failed, where the
+  /// declared law was fitted to the coil current's samples after the trigger (else 0).
+  std::array<std::array<double, 2>, kMaxAmbs> held_current_sd_A{};
+  /// With RecordRunOptions::keep_states: the modal positions and velocities (2n) when each
+  /// simulated row was taken (empty for the others).
+  std::vector<Eigen::VectorXd> states;
   /// ... and what that fit did, or why it kept the model's own state (LeadStateFit::note);
   /// "" without measurement.trigger_state = "record".
   std::string lead_fit;

@@ -229,6 +229,16 @@ RunResult RunDrop(const Rig& rig, std::uint64_t seed, const RunOptions& options)
                        draw(stream, rig.acquisition.sensor_noise_m);
       return Quantised(v, rig.acquisition.sensor_quantisation_m);
     };
+    // What the record's channels carry: the controller's noise streams (0..3) stay.
+    const auto recorded = [&](int stream, double sigma) {
+      const double n = draw(stream, sigma);
+      return options.exact_record ? 0.0 : n;
+    };
+    const auto recorded_reading = [&](int s, int axis, int stream) {
+      if (!options.exact_record) return reading(s, axis, stream);
+      const SensorRig& sensor = rig.sensors[s];
+      return sensor.gain[axis] * delivered[s][axis] + sensor.offset_m[axis];
+    };
 
     // The controller keeps running after the power fails (its own supply); its commands reach
     // the coils only while the amplifiers are powered.
@@ -288,25 +298,25 @@ RunResult RunDrop(const Rig& rig, std::uint64_t seed, const RunOptions& options)
       row.t_s = t;
       for (int s = 0; s < 2; ++s) {
         for (int axis = 0; axis < 2; ++axis) {
-          row.displacement_m[s][axis] = reading(s, axis, 4 + 2 * s + axis);
+          row.displacement_m[s][axis] = recorded_reading(s, axis, 4 + 2 * s + axis);
           row.current_A[s][axis] =
-              coil_control[s][axis] + draw(8 + 2 * s + axis, rig.acquisition.current_noise_A);
+              coil_control[s][axis] + recorded(8 + 2 * s + axis, rig.acquisition.current_noise_A);
           row.command_A[s][axis] = applied_A[s][axis];
         }
       }
       for (int tdb = 0; tdb < 2; ++tdb) {
         row.race_speed_rad_s[tdb] =
-            y(L.race(tdb)) + draw(12 + tdb, rig.acquisition.speed_noise_rpm / kRpmPerRadPerS);
+            y(L.race(tdb)) + recorded(12 + tdb, rig.acquisition.speed_noise_rpm / kRpmPerRadPerS);
         row.normal_force_N[tdb] =
-            outputs.tdb[tdb].normal_N + draw(15 + tdb, rig.acquisition.force_noise_N);
+            outputs.tdb[tdb].normal_N + recorded(15 + tdb, rig.acquisition.force_noise_N);
         // The load cell under the housing reads the contact's reaction (its tare removed).
         row.support_force_N[tdb][0] =
-            -outputs.tdb[tdb].fx_N + draw(17 + 2 * tdb, rig.acquisition.force_noise_N);
+            -outputs.tdb[tdb].fx_N + recorded(17 + 2 * tdb, rig.acquisition.force_noise_N);
         row.support_force_N[tdb][1] =
-            -outputs.tdb[tdb].fy_N + draw(18 + 2 * tdb, rig.acquisition.force_noise_N);
+            -outputs.tdb[tdb].fy_N + recorded(18 + 2 * tdb, rig.acquisition.force_noise_N);
       }
       row.rotor_speed_rad_s =
-          y(L.spin()) + draw(14, rig.acquisition.speed_noise_rpm / kRpmPerRadPerS);
+          y(L.spin()) + recorded(14, rig.acquisition.speed_noise_rpm / kRpmPerRadPerS);
       result.rows.push_back(row);
     }
     if (k == total) break;

@@ -30,6 +30,10 @@ struct RunOptions {
   /// levitated for long); false: centred, integrals empty.
   bool start_at_equilibrium = true;
   bool add_noise = true;
+  /// The record's channels exact (no acquisition noise, no quantisation) while the controller
+  /// still reads noisy sensors: the rotor's noise-driven motion is kept and seen as it is
+  /// (diagnosis of a fit's start estimate). Without add_noise it changes nothing.
+  bool exact_record = false;
   /// Called after every fine step with the time and state (tests); may be empty.
   std::function<void(double, const PlantState&)> on_step;
 };

@@ -40,16 +40,20 @@ struct Args {
   bool si = false;
   bool list = false;
   bool noise = true;
+  bool exact_record = false;
 };
 
 void Usage() {
   std::fputs(
       "usage: ambdrop_truth --rig R.json --effect NAME --seed N --out DIR [--si] [--no-noise]\n"
+      "                     [--exact-record]\n"
       "       ambdrop_truth --rig R.json --battery DIR [--si]\n"
       "       ambdrop_truth --rig R.json --battery-declared DIR [--count N] [--si]\n"
       "       ambdrop_truth [--rig R.json] --list\n"
       "NAME: a kind of --list; declared_off (one number of the rig sheet off, drawn by the\n"
-      "seed) or declared_off:ENTRY (that number; --rig R.json --list names the entries)\n",
+      "seed) or declared_off:ENTRY (that number; --rig R.json --list names the entries)\n"
+      "--exact-record: the record's channels without acquisition noise or quantisation, the\n"
+      "controller's sensors still noisy (the same motion, seen exactly: a diagnosis)\n",
       stderr);
 }
 
@@ -63,6 +67,7 @@ double MakeRecord(const Args& args, const std::string& effect, std::uint64_t see
   CheckRig(actual);
   RunOptions options;
   options.add_noise = args.noise;
+  options.exact_record = args.exact_record;
   if (!args.noise) actual.acquisition.sensor_quantisation_m = 0.0;
   const RunResult run = RunDrop(actual, seed, options);
   if (!run.finite) throw std::runtime_error(effect + ": the run diverged");
@@ -125,6 +130,8 @@ int main(int argc, char** argv) {
       args.si = true;
     } else if (a[i] == "--no-noise") {
       args.noise = false;
+    } else if (a[i] == "--exact-record") {
+      args.exact_record = true;
     } else if (a[i] == "--list") {
       args.list = true;
     } else if (a[i] == "--help" || a[i] == "-h") {
