@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "rt_core/power_loss_drive.hpp"
+#include "tools/fit/noise_floor.hpp"
 
 namespace ambdrop {
 
@@ -58,19 +59,21 @@ double HeldCurrentByLaw(const MeasuredRecord& r, int column, double trigger_s, c
     if (std::abs(step) <= 1e-12 * (1.0 + std::abs(c0))) break;
   }
   if (sd_A != nullptr) {
-    double sse = 0.0, jtj = 0.0;
+    // From the samples' noise (their second differences: a law's smooth fall has almost
+    // none), not from the fit's residual: a law that does not fit would otherwise widen its
+    // own agreement limit and hide itself.
+    double jtj = 0.0;
     std::size_t count = 0;
     for (auto j = static_cast<std::size_t>(first); j < ts.size(); ++j) {
       const double t = ts[j] - trigger_s;
       if (t > window + slack) break;
       const double slope = (law(c0 + h, t) - law(c0 - h, t)) / (2.0 * h);
-      sse += std::pow(v[j] - law(c0, t), 2);
       jtj += slope * slope;
       ++count;
     }
-    if (count > 1 && jtj > 0.0) {
-      *sd_A = std::sqrt(sse / static_cast<double>(count - 1) / jtj);
-    }
+    const auto from = static_cast<std::size_t>(first);
+    const double noise = NoiseSigma(v, from, from + count);
+    if (jtj > 0.0) *sd_A = noise / std::sqrt(jtj);
   }
   return c0;
 }

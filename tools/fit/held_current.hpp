@@ -32,8 +32,8 @@ double HeldCurrentAtTrigger(const MeasuredRecord& record, int column, double tri
 /// tools/truth's records) off, and on a rotor that the power loss leaves unstable (a magnet's
 /// bias) that error drives the drop: the law's whole window averages it down. A law whose
 /// reported current does not depend on c0 (the currents vanish at once) keeps the reading.
-/// `sd_A`, if given, receives c0's standard error (the fit's residual RMS over the root of
-/// its sum of squared sensitivities; 0 where the reading is kept).
+/// `sd_A`, if given, receives c0's standard error (the window's noise, NoiseSigma, over the
+/// root of its sum of squared sensitivities; 0 where the reading is kept).
 double HeldCurrentByLaw(const MeasuredRecord& record, int column, double trigger_s,
                         const AmbParams& amb, double* sd_A = nullptr);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -32,6 +33,24 @@ struct CurrentAxis {
   int column = -1;
   double sigma_A = 0.0;  // the column's white noise per sample (NoiseSigma before the trigger)
 };
+
+// A current channel's white noise per sample. Its second differences carry the levitated
+// current's own fast changes too (a firmware's staircase through a current loop: 8 mA read for
+// 5 mA of noise on the independent flexible rig), and after the trigger those of the
+// power-loss law (a ramp has none): the smaller of the two windows' estimates (each at least
+// 20 rows; the one after the trigger 5 ms long).
+double CurrentNoiseSigma(const MeasuredRecord& r, int column, std::size_t trigger_row) {
+  const std::vector<double>& v = r.values[static_cast<std::size_t>(column)];
+  constexpr std::size_t kMinRows = 20;
+  double sigma = std::numeric_limits<double>::infinity();
+  if (trigger_row >= kMinRows) sigma = NoiseSigma(v, 0, trigger_row);
+  const std::size_t after = static_cast<std::size_t>(
+      std::max<long long>(kMinRows, std::llround(5e-3 / r.SampleInterval())));
+  if (trigger_row + after <= v.size()) {
+    sigma = std::min(sigma, NoiseSigma(v, trigger_row, trigger_row + after));
+  }
+  return std::isfinite(sigma) ? sigma : 0.0;
+}
 
 }  // namespace
 
@@ -99,7 +118,7 @@ LeadStateFit FitLeadState(const ModelParams& declared, const MeasurementParams& 
     for (int axis = 0; axis < 2; ++axis) {
       const int c = column[amb][axis];
       if (c < 0) continue;
-      const double sigma = NoiseSigma(r.values[c], 0, trigger_row);
+      const double sigma = CurrentNoiseSigma(r, c, trigger_row);
       if (sigma > 0.0) axes.push_back({amb, axis, c, sigma});
     }
   }
