@@ -611,9 +611,12 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   // where they depart further beyond their limit than the whole record does: a race's drag or
   // inertia shows only once the races spin, where the bouncing's spread (0.03 on the rigid rig,
   // ten times its noise) keeps any cut of the whole record under 3x.
-  const std::string on = early_departs                                           ? "early"
-                         : speeds_depart && departure(speeds) > departure(whole) ? "speeds"
-                                                                                 : "whole";
+  // Where both the start and the speeds depart, the one that departs further: a race's inertia
+  // barely touches the start (1.15 times its limit there, from the start's own uncertainty)
+  // and takes the speeds to 3.2 times theirs.
+  const bool speeds_further =
+      speeds_depart && departure(speeds) > departure(whole) && departure(speeds) > departure(early);
+  const std::string on = speeds_further ? "speeds" : early_departs ? "early" : "whole";
   const Selection::Part& judged_part = on == "early" ? early : on == "speeds" ? speeds : whole;
   const RecordCost& judged = on == "early" ? *early_cost : on == "speeds" ? *speeds_cost : cost;
   const Eigen::VectorXd& judged_before = on == "early"    ? early_before
