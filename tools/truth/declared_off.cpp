@@ -12,6 +12,7 @@
 #include "drop_run.hpp"
 #include "noise.hpp"
 #include "plant.hpp"
+#include "rotor_modes.hpp"
 
 namespace ambdrop_truth {
 
@@ -60,16 +61,8 @@ double MinGap(const Rig& rig) {
 }  // namespace
 
 std::vector<DeclaredEntry> DeclaredOffEntries(const Rig& rig) {
-  // The list below names a rigid rotor's and a PID's numbers; a flexible shaft's are derived
-  // from its segments and discs, and a firmware controller's are its sections.
-  if (rig.shaft.enabled || rig.controller.firmware) {
-    throw std::runtime_error(
-        "declared_off lists the numbers of a rigid rotor held by a PID; rig '" + rig.name +
-        "' has a flexible shaft or a firmware controller, whose numbers it "
-        "does not list yet");
-  }
   std::vector<DeclaredEntry> out;
-  out.reserve(64);  // `add` returns a reference to the entry it added: no reallocation
+  out.reserve(96);  // `add` returns a reference to the entry it added: no reallocation
   using K = OffKind;
   // One entry: its generator name, how it is drawn, its ambdrop key, the rig field.
   const auto add = [&](std::string name, OffKind kind, std::string key,
@@ -84,14 +77,62 @@ std::vector<DeclaredEntry> DeclaredOffEntries(const Rig& rig) {
     return out.back();
   };
 
-  const std::string rotor = "rotor.rigid.";
-  add("rotor.mass_kg", K::kFactor, rotor + "mass_kg", [](Rig* r) { return &r->rotor.mass_kg; });
-  add("rotor.transverse_inertia_kg_m2", K::kFactor, rotor + "transverse_inertia_kg_m2",
-      [](Rig* r) { return &r->rotor.transverse_inertia_kg_m2; });
-  add("rotor.polar_inertia_kg_m2", K::kFactor, rotor + "polar_inertia_kg_m2",
-      [](Rig* r) { return &r->rotor.polar_inertia_kg_m2; });
-  add("rotor.centre_of_mass_m", K::kStation, rotor + "centre_of_mass_m",
-      [](Rig* r) { return &r->rotor.centre_of_mass_m; });
+  if (!rig.shaft.enabled) {
+    const std::string rotor = "rotor.rigid.";
+    add("rotor.mass_kg", K::kFactor, rotor + "mass_kg", [](Rig* r) { return &r->rotor.mass_kg; });
+    add("rotor.transverse_inertia_kg_m2", K::kFactor, rotor + "transverse_inertia_kg_m2",
+        [](Rig* r) { return &r->rotor.transverse_inertia_kg_m2; });
+    add("rotor.polar_inertia_kg_m2", K::kFactor, rotor + "polar_inertia_kg_m2",
+        [](Rig* r) { return &r->rotor.polar_inertia_kg_m2; });
+    add("rotor.centre_of_mass_m", K::kStation, rotor + "centre_of_mass_m",
+        [](Rig* r) { return &r->rotor.centre_of_mass_m; });
+  } else {
+    // A flexible shaft's rigid-body numbers follow from its segments and discs.
+    const auto derive = [](Rig* r) { r->rotor = ShaftInertia(r->shaft); };
+    const std::string shaft = "rotor.shaft.";
+    add(shaft + "youngs_modulus_Pa", K::kFactor, "rotor.materials.steel.youngs_modulus_Pa",
+        [](Rig* r) { return &r->shaft.youngs_modulus_Pa; })
+        .follow = derive;
+    add(shaft + "density_kg_m3", K::kFactor, "rotor.materials.steel.density_kg_m3", [](Rig* r) {
+      return &r->shaft.density_kg_m3;
+    }).follow = derive;
+    for (std::size_t i = 0; i < rig.shaft.segments.size(); ++i) {
+      add(fmt::format("{}segments[{}].outer_diameter_m", shaft, i), K::kFactor,
+          fmt::format("rotor.sections[{}].outer_diameter_m", i),
+          [i](Rig* r) { return &r->shaft.segments[i].outer_diameter_m; })
+          .follow = derive;
+    }
+    for (std::size_t i = 0; i < rig.shaft.discs.size(); ++i) {
+      const std::string g = fmt::format("{}discs[{}].", shaft, i);
+      const std::string k = fmt::format("rotor.discs[{}].", i);
+      add(g + "position_m", K::kStation, k + "position_m", [i](Rig* r) {
+        return &r->shaft.discs[i].position_m;
+      }).follow = derive;
+      add(g + "mass_kg", K::kFactor, k + "mass_kg", [i](Rig* r) {
+        return &r->shaft.discs[i].mass_kg;
+      }).follow = derive;
+      add(g + "transverse_inertia_kg_m2", K::kFactor, k + "transverse_inertia_kg_m2", [i](Rig* r) {
+        return &r->shaft.discs[i].transverse_inertia_kg_m2;
+      }).follow = derive;
+      add(g + "polar_inertia_kg_m2", K::kFactor, k + "polar_inertia_kg_m2", [i](Rig* r) {
+        return &r->shaft.discs[i].polar_inertia_kg_m2;
+      }).follow = derive;
+    }
+  }
+  if (rig.coast_down.viscous_N_m_s > 0.0) {
+    add("coast_down.viscous_N_m_s", K::kFactor, "rotor.coast_down.viscous_N_m_s",
+        [](Rig* r) { return &r->coast_down.viscous_N_m_s; });
+  }
+  if (rig.coast_down.windage_N_m_s2 > 0.0) {
+    add("coast_down.windage_N_m_s2", K::kFactor, "rotor.coast_down.windage_N_m_s2",
+        [](Rig* r) { return &r->coast_down.windage_N_m_s2; });
+  }
+  if (rig.power_loss.form == FluxDecayForm::kRamp) {
+    DeclaredEntry& slew = add("power_loss.slew_rate_A_per_s", K::kFactor,
+                              "amb." + rig.ambs[0].name + ".flux_decay.slew_rate_A_per_s",
+                              [](Rig* r) { return &r->power_loss.slew_rate_A_per_s; });
+    slew.also_ambdrop_keys = {"amb." + rig.ambs[1].name + ".flux_decay.slew_rate_A_per_s"};
+  }
 
   for (int i = 0; i < 2; ++i) {
     const std::string g = "ambs." + rig.ambs[i].name + ".";
@@ -121,13 +162,52 @@ std::vector<DeclaredEntry> DeclaredOffEntries(const Rig& rig) {
   }
 
   const std::string linear = "controller.linear.";
-  const std::string pid = linear + "sections[0].";
-  add("controller.kp", K::kFactor, pid + "kp", [](Rig* r) { return &r->controller.kp; });
-  add("controller.ki_per_s", K::kFactor, pid + "ki_per_s",
-      [](Rig* r) { return &r->controller.ki_per_s; });
-  add("controller.kd_s", K::kFactor, pid + "kd_s", [](Rig* r) { return &r->controller.kd_s; });
-  add("controller.derivative_filter_s", K::kFactor, pid + "derivative_filter_s",
-      [](Rig* r) { return &r->controller.derivative_filter_s; });
+  if (!rig.controller.firmware) {
+    const std::string pid = linear + "sections[0].";
+    add("controller.kp", K::kFactor, pid + "kp", [](Rig* r) { return &r->controller.kp; });
+    add("controller.ki_per_s", K::kFactor, pid + "ki_per_s",
+        [](Rig* r) { return &r->controller.ki_per_s; });
+    add("controller.kd_s", K::kFactor, pid + "kd_s", [](Rig* r) { return &r->controller.kd_s; });
+    add("controller.derivative_filter_s", K::kFactor, pid + "derivative_filter_s",
+        [](Rig* r) { return &r->controller.derivative_filter_s; });
+  } else {
+    // The firmware's sections in the translation's order (tests/truth/flexible_pm_b.toml).
+    for (std::size_t i = 0; i < rig.controller.sections.size(); ++i) {
+      const std::string g = fmt::format("controller.sections[{}].", i);
+      const std::string k = fmt::format("{}sections[{}].", linear, i);
+      const auto number = [&](const std::string& name, double FirmwareSectionRig::*member) {
+        add(g + name, K::kFactor, k + name,
+            [i, member](Rig* r) { return &(r->controller.sections[i].*member); });
+      };
+      switch (rig.controller.sections[i].kind) {
+        case FirmwareSectionRig::Kind::kPd:
+          number("kp", &FirmwareSectionRig::kp);
+          number("kd_s", &FirmwareSectionRig::kd_s);
+          number("derivative_filter_s", &FirmwareSectionRig::derivative_filter_s);
+          break;
+        case FirmwareSectionRig::Kind::kLead:
+          number("zero_Hz", &FirmwareSectionRig::zero_Hz);
+          number("pole_Hz", &FirmwareSectionRig::pole_Hz);
+          break;
+        case FirmwareSectionRig::Kind::kNotch:
+          number("frequency_Hz", &FirmwareSectionRig::frequency_Hz);
+          number("pole_damping", &FirmwareSectionRig::pole_damping);
+          if (rig.controller.sections[i].zero_damping > 0.0) {
+            number("zero_damping", &FirmwareSectionRig::zero_damping);
+          }
+          break;
+      }
+    }
+  }
+  if (rig.controller.amplifier.enabled) {
+    add("controller.amplifier.bandwidth_Hz", K::kFactor, "controller.amplifier.bandwidth_Hz",
+        [](Rig* r) { return &r->controller.amplifier.bandwidth_Hz; });
+    if (rig.controller.amplifier.slew_rate_A_per_s > 0.0) {
+      add("controller.amplifier.slew_rate_A_per_s", K::kFactor,
+          "controller.amplifier.slew_rate_A_per_s",
+          [](Rig* r) { return &r->controller.amplifier.slew_rate_A_per_s; });
+    }
+  }
   add("controller.amplifier_gain_A_per_V", K::kFactor, linear + "amplifier_gain_A_per_V",
       [](Rig* r) { return &r->controller.amplifier_gain_A_per_V; });
   add("controller.sensor_gain_V_per_m", K::kFactor, linear + "sensor_gain_V_per_m",
@@ -280,6 +360,9 @@ Truth ApplyDraw(const std::vector<DeclaredEntry>& entries, const DeclaredOffDraw
   t.mapping_note = e.mapping_note;
   t.generator_parameters.emplace_back(e.name, d.value);
   t.ambdrop_keys.emplace_back(e.ambdrop_key, e.ambdrop_value(*rig, d.value));
+  for (const std::string& key : e.also_ambdrop_keys) {
+    t.ambdrop_keys.emplace_back(key, e.ambdrop_value(*rig, d.value));
+  }
   return t;
 }
 

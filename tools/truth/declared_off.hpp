@@ -1,9 +1,12 @@
 #pragma once
 // The `declared_off` effect (issue 23): one number of the rig sheet is off in the truth run, the
 // model form is right. Every entry is a number of the sheet with its ambdrop key: the rotor's
-// mass, inertias and centre of mass; per AMB its constant, bias, nominal gap and station; per
-// sensor its station and each axis's gain and offset; the controller's gains, filter and
-// delay; per TDB its station, clearance, journal radius, friction, race and contact numbers.
+// mass, inertias and centre of mass (a flexible shaft: each disc's mass, inertias and station,
+// each segment's diameter, the material's modulus and density); per AMB its constant, bias,
+// nominal gap and station; per sensor its station and each axis's gain and offset; the
+// controller's gains, filter and delay (a firmware controller: each section's numbers, the
+// current loop's bandwidth and slew limit); the power-loss ramp's slew rate and the windage;
+// per TDB its station, clearance, journal radius, friction, race and contact numbers.
 // What the sheet has and this list leaves out is said in README.md (and why).
 //
 // A draw: sizes by a factor 1 +- (0.15 .. 0.4); offsets (declared 0) by +-(5 .. 30) um;
@@ -36,6 +39,8 @@ struct DeclaredEntry {
   /// sheet does not give, stays the journal radius.
   std::function<void(Rig*)> follow;
   std::string ambdrop_key;  ///< the `--set` key that carries it in ambdrop's terms
+  /// Further keys that carry the same value (a rig-wide number that ambdrop declares per AMB).
+  std::vector<std::string> also_ambdrop_keys;
   /// The ambdrop value for a generator value (identity unless the translation converts).
   std::function<std::string(const Rig&, double)> ambdrop_value;
   std::string mapping = "exact";  ///< "exact" or "approximate"
