@@ -218,9 +218,15 @@ TEST_F(SocketCan, FullReceiveQueueDropsAndCountsWithoutBlockingTheSender) {
   // The kernel reports the drop count with the next frame queued after the drops.
   ASSERT_EQ(sender.Send(Classic(0x201, 1)), CanStatus::kOk);
   ++sent;
-  ASSERT_EQ(receiver.Receive(&frame, kWait), CanStatus::kOk);
-  ++received;
-  EXPECT_EQ(frame.id, 0x201u);
+  // vcan hands frames on through the receive softirq: on a loaded machine some 0x200 frames
+  // still arrive after the drain above (one did, with 420 of 1001 then unaccounted). The
+  // marker is queued after all of them.
+  bool marker = false;
+  while (!marker && receiver.Receive(&frame, kWait) == CanStatus::kOk) {
+    ++received;
+    marker = frame.id == 0x201u;
+  }
+  EXPECT_TRUE(marker);
   const CanBusCounters counters = receiver.counters();
   EXPECT_GT(counters.receive_overflows, 0u);
   EXPECT_EQ(received + counters.receive_overflows, sent);
