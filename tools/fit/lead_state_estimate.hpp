@@ -5,8 +5,10 @@
 // magnet's bias keeps its negative stiffness) goes where that motion sends it. So over a lead
 // window before the trigger the model is driven open loop by the record's measured currents,
 // from its own closed-loop state at the window's start, and both are fitted to the window's
-// displacement samples: the part of that state the displacement channels see (the row space of
-// their shapes: positions and velocities), without a prior, and corrections of the measured
+// displacement samples: every modal coordinate and velocity of that state, without a prior
+// (over the window the modes' own frequencies tell apart what the sensors' shapes alone cannot:
+// a bending mode left at the model's own jitter sent the drop elsewhere), and corrections of
+// the measured
 // currents, with their own noise as the prior (a maximum a posteriori estimate, as a
 // fixed-interval smoother would make it). The currents' noise matters: through a plant that is
 // unstable without its controller, 5 mA of it over 6 ms moved the drop's first 8 ms by 10 % on
