@@ -611,20 +611,9 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   // where they depart further beyond their limit than the whole record does: a race's drag or
   // inertia shows only once the races spin, where the bouncing's spread (0.03 on the rigid rig,
   // ten times its noise) keeps any cut of the whole record under 3x.
-  // A start that departs only marginally (within half its limit again: the limit is itself an
-  // estimate, and the start's own uncertainty can take it there) does not outweigh speeds that
-  // depart further: a race's inertia on the flexible rig left its start at 1.19 times the limit
-  // and its speeds at 2.9 times. A start that departs clearly is judged even where the speeds
-  // depart further still: a TDB's misalignment or friction on the rigid rig departs 2 to 3.5
-  // times at the start and 8 to 9 times on the speeds, where look-alikes abound.
-  constexpr double kMarginalDeparture = 1.5;
-  const bool early_clearly = departure(early) > kMarginalDeparture;
-  const bool speeds_further =
-      speeds_depart && departure(speeds) > departure(whole) && departure(speeds) > departure(early);
-  const std::string on = early_clearly    ? "early"
-                         : speeds_further ? "speeds"
-                         : early_departs  ? "early"
-                                          : "whole";
+  const std::string on = early_departs                                           ? "early"
+                         : speeds_depart && departure(speeds) > departure(whole) ? "speeds"
+                                                                                 : "whole";
   const Selection::Part& judged_part = on == "early" ? early : on == "speeds" ? speeds : whole;
   const RecordCost& judged = on == "early" ? *early_cost : on == "speeds" ? *speeds_cost : cost;
   const Eigen::VectorXd& judged_before = on == "early"    ? early_before
