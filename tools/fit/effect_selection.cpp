@@ -437,38 +437,6 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
     });
     for (const std::size_t i : alike_keys) s.candidates[i] = singles[i];
   }
-  // Of single explanations the record cannot tell apart (residuals within the equivalence
-  // margin), the one with fewer parameters: the information criterion counts every sample as
-  // independent, and a drop's residuals are not, so a parameter that only bends the fit to
-  // the start's uncertainty still looks material (a y gain off on one sensor was named as both
-  // axes' gain and an offset, 0.00402 against 0.00420).
-  if (s.chosen.size() == 1 && !at_floor) {
-    std::size_t chosen = singles.size();
-    for (std::size_t i = 0; i < singles.size(); ++i) {
-      if (singles[i].name == s.chosen.front()) chosen = i;
-    }
-    std::size_t simplest = singles.size();
-    for (std::size_t i = 0; i < singles.size() && chosen < singles.size(); ++i) {
-      const CandidateScore& c = singles[i];
-      if (i == chosen || !c.tried || !std::isfinite(c.fit.sse)) continue;
-      if (Parameters(c.fit) >= Parameters(s.chosen_fit)) continue;
-      if (!(c.rms_after <= s.rms_after * rules.equivalent_margin)) continue;
-      if (!material(s.rms_before, c.rms_after, c.delta_bic, Parameters(c.fit))) continue;
-      if (simplest == singles.size() || Parameters(c.fit) < Parameters(singles[simplest].fit) ||
-          (Parameters(c.fit) == Parameters(singles[simplest].fit) &&
-           c.rms_after < singles[simplest].rms_after)) {
-        simplest = i;
-      }
-    }
-    if (simplest < singles.size()) {
-      s.candidates[chosen].accepted = false;
-      s.candidates[simplest].accepted = true;
-      s.chosen = {singles[simplest].name};
-      s.chosen_fit = singles[simplest].fit;
-      s.rms_after = singles[simplest].rms_after;
-      limit_after = floor_limit(s.chosen_fit);
-    }
-  }
 
   // What the record could not have shown: a verdict of agreement says nothing about these.
   std::string unseen;
