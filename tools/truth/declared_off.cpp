@@ -105,18 +105,15 @@ std::vector<DeclaredEntry> DeclaredOffEntries(const Rig& rig) {
     for (std::size_t i = 0; i < rig.shaft.discs.size(); ++i) {
       const std::string g = fmt::format("{}discs[{}].", shaft, i);
       const std::string k = fmt::format("rotor.discs[{}].", i);
-      add(g + "position_m", K::kStation, k + "position_m", [i](Rig* r) {
-        return &r->shaft.discs[i].position_m;
-      }).follow = derive;
-      add(g + "mass_kg", K::kFactor, k + "mass_kg", [i](Rig* r) {
-        return &r->shaft.discs[i].mass_kg;
-      }).follow = derive;
-      add(g + "transverse_inertia_kg_m2", K::kFactor, k + "transverse_inertia_kg_m2", [i](Rig* r) {
-        return &r->shaft.discs[i].transverse_inertia_kg_m2;
-      }).follow = derive;
-      add(g + "polar_inertia_kg_m2", K::kFactor, k + "polar_inertia_kg_m2", [i](Rig* r) {
-        return &r->shaft.discs[i].polar_inertia_kg_m2;
-      }).follow = derive;
+      const auto number = [&](const std::string& name, OffKind kind, double DiscRig::*member) {
+        add(g + name, kind, k + name, [i, member](Rig* r) {
+          return &(r->shaft.discs[i].*member);
+        }).follow = derive;
+      };
+      number("position_m", K::kStation, &DiscRig::position_m);
+      number("mass_kg", K::kFactor, &DiscRig::mass_kg);
+      number("transverse_inertia_kg_m2", K::kFactor, &DiscRig::transverse_inertia_kg_m2);
+      number("polar_inertia_kg_m2", K::kFactor, &DiscRig::polar_inertia_kg_m2);
     }
   }
   if (rig.coast_down.viscous_N_m_s > 0.0) {
