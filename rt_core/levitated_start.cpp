@@ -11,7 +11,7 @@ namespace ambdrop {
 namespace {
 
 // H(0) of one section as numerator / denominator, the constant coefficients of its continuous
-// form (controller_if/controller_discretisation.cpp), or of its z form at z = 1.
+// form (controller_if/controller/controller_discretisation.cpp), or of its z form at z = 1.
 struct DcEnds {
   double numerator = 1.0;
   double denominator = 1.0;

@@ -2,7 +2,7 @@
 // Where a rotor under the in-process controller starts: the static equilibrium the controller
 // itself holds. A controller holds its sensors' readings, not the rotor: with a sensor offset the
 // rotor sits where the reading is the set point, reading = gain (x + runout) + offset
-// (docs/equations.md, "Sensors"; controller_if/sensor_emulator.cpp), and the controller's
+// (docs/equations.md, "Sensors"; controller_if/boundary/sensor_emulator.cpp), and the controller's
 // integrators carry whatever current holds it there.
 #include <array>
 #include <vector>
@@ -29,7 +29,7 @@ struct ControllerStaticLaw {
 
 /// The static law of `controller` (only meaningful with ControllerKind::kInternalPid). Tustin,
 /// zero-order hold and backward Euler all map s = 0 to z = 1, so the DC gain of each section's
-/// continuous form (controller_if/controller_discretisation.cpp) is its discrete one's.
+/// continuous form (controller_if/controller/controller_discretisation.cpp) is its discrete one's.
 ControllerStaticLaw StaticLawOf(const ControllerParams& controller);
 
 /// The levitated start of a run under the in-process controller (initial_position =

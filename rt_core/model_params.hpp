@@ -121,7 +121,7 @@ struct SimulationParams {
   InitialPosition initial_position = InitialPosition::kEquilibrium;
   /// Opt-in settled start (s): the in-process closed loop runs this long, powered and without
   /// trigger or output, before the run's t = 0, so that its filters, integrators and the
-  /// rotor's synchronous orbit start steady (controller_if/settled_start.hpp). 0: the run
+  /// rotor's synchronous orbit start steady (controller_if/loop/settled_start.hpp). 0: the run
   /// starts at the levitated equilibrium (rt_core/levitated_start.hpp).
   double settle_s = 0.0;
   /// Divergence guard: the run stops when a journal leaves its TDB by more than this many

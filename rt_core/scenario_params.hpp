@@ -1,7 +1,7 @@
 #pragma once
-// A scripted shutdown (the [scenario] table of a scenario file, io/config_scenario.hpp): timed
-// events on the power, the sensors, the currents and the controller link, and the outcome the
-// scenario expects. Plain data; controller_if/scenario_faults.hpp carries the events out.
+// A scripted shutdown (the [scenario] table of a scenario file, io/config/config_scenario.hpp):
+// timed events on the power, the sensors, the currents and the controller link, and the outcome the
+// scenario expects. Plain data; controller_if/boundary/scenario_faults.hpp carries the events out.
 #include <optional>
 #include <string>
 #include <vector>

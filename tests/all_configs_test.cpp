@@ -3,8 +3,8 @@
 
 #include <filesystem>
 
-#include "controller_if/offline_run.hpp"
-#include "io/config_loader.hpp"
+#include "controller_if/loop/offline_run.hpp"
+#include "io/config/config_loader.hpp"
 #include "rt_core/model.hpp"
 
 namespace ambdrop {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <complex>
 
-#include "controller_if/offline_run.hpp"
+#include "controller_if/loop/offline_run.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/simulator.hpp"
 #include "test_configs.hpp"

@@ -9,7 +9,7 @@
 #include <numbers>
 #include <string>
 
-#include "controller_if/power_state.hpp"
+#include "controller_if/boundary/power_state.hpp"
 #include "rt_core/amb_force.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/power_loss_drive.hpp"

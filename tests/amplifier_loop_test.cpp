@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "controller_if/amplifier_loop.hpp"
+#include "controller_if/controller/amplifier_loop.hpp"
 
 namespace ambdrop {
 namespace {

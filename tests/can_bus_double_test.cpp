@@ -1,7 +1,7 @@
 // The in-memory CAN bus keeps CAN_RAW's semantics: record sizes (EINVAL), FD only when enabled,
 // broadcast without echo unless asked, kernel filter rules, drop-at-receiver when full, whole
 // records only and never 0 bytes, and no allocation in Send/Receive.
-#include "io/can_bus_double.hpp"
+#include "io/can/can_bus_double.hpp"
 
 #include <gtest/gtest.h>
 #include <linux/can.h>

@@ -1,14 +1,14 @@
 // ControllerFrameView: the [can] frame map from the controller's side. What the emulator encodes
 // it decodes (up to the scales' rounding), what it encodes the emulator decodes, its trigger
 // frames are the emulator's power events, and bad frames are counted, not applied.
-#include "io/can_controller_view.hpp"
+#include "io/can/can_controller_view.hpp"
 
 #include <gtest/gtest.h>
 
 #include <array>
 #include <span>
 
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "malloc_guard.hpp"
 #include "test_configs.hpp"
 

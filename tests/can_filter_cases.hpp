@@ -6,7 +6,7 @@
 #include <array>
 #include <cstdint>
 
-#include "io/can_frame.hpp"
+#include "io/can/can_frame.hpp"
 
 namespace ambdrop::can_filter_cases {
 

@@ -1,7 +1,7 @@
 // The frame map: raw codecs for every width, signedness and byte order (fixed-seed random round
 // trips), scaling with saturation counts, decode of unknown/short frames counted and harmless,
 // triggers and status, allocation-free decode/encode, and the [can] config with its errors.
-#include "io/can_frame_map.hpp"
+#include "io/can/can_frame_map.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -16,8 +16,8 @@
 #include <string_view>
 #include <vector>
 
-#include "io/config_can.hpp"
-#include "io/config_loader.hpp"
+#include "io/config/config_can.hpp"
+#include "io/config/config_loader.hpp"
 #include "malloc_guard.hpp"
 
 namespace ambdrop {

@@ -1,6 +1,6 @@
 // CanFrame against the kernel's struct can_frame / canfd_frame: sizes, offsets, flags, and
 // byte-exact conversions both ways.
-#include "io/can_frame.hpp"
+#include "io/can/can_frame.hpp"
 
 #include <gtest/gtest.h>
 #include <linux/can.h>

@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/simulator.hpp"
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "test_configs.hpp"
 
 namespace ambdrop {

@@ -1,6 +1,6 @@
-// The key registry (io/config_keys.hpp): every number of every rig in configs/ is recorded with
-// a `--set` path that reaches exactly that number, a class that keeps solver and measurement keys
-// out of a fit, and a default fit range inside what the readers accept.
+// The key registry (io/config/config_keys.hpp): every number of every rig in configs/ is recorded
+// with a `--set` path that reaches exactly that number, a class that keeps solver and measurement
+// keys out of a fit, and a default fit range inside what the readers accept.
 #include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -14,10 +14,10 @@
 #include <utility>
 #include <vector>
 
-#include "io/config_keys.hpp"
-#include "io/config_loader.hpp"
-#include "io/config_variants.hpp"
-#include "io/toml_reader.hpp"
+#include "io/config/config_keys.hpp"
+#include "io/config/config_loader.hpp"
+#include "io/config/config_variants.hpp"
+#include "io/config/toml_reader.hpp"
 #include "test_configs.hpp"
 
 namespace ambdrop {

@@ -1,4 +1,4 @@
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "test_configs.hpp"
 
 namespace ambdrop {

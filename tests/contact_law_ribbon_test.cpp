@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "malloc_guard.hpp"
 #include "rt_core/contact_law_tdb.hpp"
 #include "rt_core/ribbon_dahl.hpp"

@@ -1,6 +1,6 @@
 // The controller watchdog: each silence action, recovery, the latched stop, counters, parsing,
 // and the watchdog driving a PeriodicLoop on the VirtualClock.
-#include "controller_if/controller_watchdog.hpp"
+#include "controller_if/boundary/controller_watchdog.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "controller_if/periodic_loop.hpp"
-#include "controller_if/rt_clock.hpp"
+#include "controller_if/loop/periodic_loop.hpp"
+#include "controller_if/loop/rt_clock.hpp"
 #include "malloc_guard.hpp"
 
 // Sanitizer builds compile the guard's malloc hooks out (AMBDROP_NO_MALLOC_HOOKS): their runtimes

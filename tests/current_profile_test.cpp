@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdint>
 
-#include "controller_if/current_profile.hpp"
-#include "controller_if/profile_controller_link.hpp"
+#include "controller_if/controller/current_profile.hpp"
+#include "controller_if/controller/profile_controller_link.hpp"
 #include "malloc_guard.hpp"
 #include "test_configs.hpp"
 

@@ -1,6 +1,6 @@
 // The general linear controller's sections against closed forms written here from the
-// textbook formulas, not from controller_if/controller_discretisation.cpp: a notch's response
-// against its bilinear H(z), a prewarped notch's zero, a zero-order-hold low-pass's step
+// textbook formulas, not from controller_if/controller/controller_discretisation.cpp: a notch's
+// response against its bilinear H(z), a prewarped notch's zero, a zero-order-hold low-pass's step
 // response, the PID shorthand against the PID recurrence, a lead's phase at its centre, and the
 // anti-windup rules' limits.
 #include <gtest/gtest.h>
@@ -10,9 +10,9 @@
 #include <numbers>
 #include <vector>
 
-#include "controller_if/biquad.hpp"
-#include "controller_if/controller_discretisation.hpp"
-#include "controller_if/discrete_controller.hpp"
+#include "controller_if/controller/biquad.hpp"
+#include "controller_if/controller/controller_discretisation.hpp"
+#include "controller_if/controller/discrete_controller.hpp"
 
 namespace ambdrop {
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "io/config_variants.hpp"
+#include "io/config/config_variants.hpp"
 #include "test_configs.hpp"
 #include "tools/fit/effect_fit.hpp"
 #include "tools/fit/effect_library.hpp"

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "misaligned_pid_record.hpp"
 #include "test_configs.hpp"
 #include "tools/fit/effect_selection.hpp"

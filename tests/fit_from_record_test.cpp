@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "rt_core/amb_force.hpp"
 #include "rt_core/power_loss_drive.hpp"
 #include "test_configs.hpp"

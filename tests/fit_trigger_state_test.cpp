@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "rt_core/model_params.hpp"
 #include "rt_core/power_loss_drive.hpp"
 #include "test_configs.hpp"

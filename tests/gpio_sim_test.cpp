@@ -19,8 +19,8 @@
 #include <string>
 #include <thread>
 
-#include "io/gpio_trigger.hpp"
-#include "io/gpiod_lines.hpp"
+#include "io/gpio/gpio_trigger.hpp"
+#include "io/gpio/gpiod_lines.hpp"
 #include "malloc_guard.hpp"
 
 namespace ambdrop {

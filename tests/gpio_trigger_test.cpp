@@ -1,7 +1,7 @@
 // GpioDouble (the in-memory chip with gpio-sim's and libgpiod v1's semantics) and GpioTrigger
 // (edges → debounced power events, drop state → mirror output), with explicit timestamps.
 // tests/gpio_sim_test.cpp runs the same logic on the kernel's gpio-sim in the VM harness.
-#include "io/gpio_trigger.hpp"
+#include "io/gpio/gpio_trigger.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -15,7 +15,7 @@
 #include <thread>
 #include <vector>
 
-#include "io/gpio_double.hpp"
+#include "io/gpio/gpio_double.hpp"
 #include "malloc_guard.hpp"
 
 namespace ambdrop {

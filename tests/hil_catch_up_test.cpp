@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "controller_if/hil_session.hpp"
-#include "controller_if/internal_controller_link.hpp"
-#include "controller_if/periodic_loop.hpp"
-#include "controller_if/rt_clock.hpp"
+#include "controller_if/controller/internal_controller_link.hpp"
+#include "controller_if/loop/hil_session.hpp"
+#include "controller_if/loop/periodic_loop.hpp"
+#include "controller_if/loop/rt_clock.hpp"
 #include "malloc_guard.hpp"
 #include "test_configs.hpp"
 

@@ -12,10 +12,10 @@
 #include <string>
 #include <thread>
 
-#include "io/config_loader.hpp"
-#include "io/json_writer.hpp"
+#include "io/config/config_loader.hpp"
+#include "io/files/json_writer.hpp"
 #include "test_configs.hpp"
-#include "tools/hil_links.hpp"
+#include "tools/hil/hil_links.hpp"
 
 namespace ambdrop {
 namespace {

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "io/config_keys.hpp"
-#include "io/config_loader.hpp"
-#include "io/config_variants.hpp"
+#include "io/config/config_keys.hpp"
+#include "io/config/config_loader.hpp"
+#include "io/config/config_variants.hpp"
 #include "rt_core/contact_law_tdb.hpp"
 #include "rt_core/tdb_common.hpp"
 #include "rt_core/tdb_factory.hpp"

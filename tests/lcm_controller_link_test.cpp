@@ -10,8 +10,8 @@
 #include <lcm/lcm-cpp.hpp>
 #include <thread>
 
-#include "io/lcm_transport.hpp"
-#include "tools/lcm_controller_link.hpp"
+#include "io/lcm/lcm_transport.hpp"
+#include "tools/hil/lcm_controller_link.hpp"
 
 namespace ambdrop {
 namespace {

@@ -26,7 +26,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
-#include "io/lcm_transport.hpp"
+#include "io/lcm/lcm_transport.hpp"
 #include "malloc_guard.hpp"
 
 namespace ambdrop {

@@ -45,7 +45,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
-#include "io/lcm_transport.hpp"
+#include "io/lcm/lcm_transport.hpp"
 
 namespace ambdrop {
 namespace {

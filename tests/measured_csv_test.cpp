@@ -1,6 +1,6 @@
 // Measured records as CSV: written and read back bit for bit, and every malformed file a
 // MeasuredRecordError naming the file, line and column.
-#include "io/measured_csv.hpp"
+#include "io/files/measured_csv.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "controller_if/offline_run.hpp"
-#include "controller_if/run_record.hpp"
-#include "io/config_loader.hpp"
+#include "controller_if/loop/offline_run.hpp"
+#include "controller_if/loop/run_record.hpp"
+#include "io/config/config_loader.hpp"
 #include "rt_core/model.hpp"
 #include "test_configs.hpp"
 #include "tools/fit/measured_record_maker.hpp"

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "controller_if/offline_run.hpp"
+#include "controller_if/loop/offline_run.hpp"
 #include "rt_core/amb_force.hpp"
 #include "test_configs.hpp"
 

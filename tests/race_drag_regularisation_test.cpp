@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/simulator.hpp"
 #include "rt_core/tdb_common.hpp"

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "io/config_loader.hpp"
-#include "io/measured_record_si.hpp"
+#include "io/config/config_loader.hpp"
+#include "io/files/measured_record_si.hpp"
 #include "rt_core/model.hpp"
 #include "scratch_directory.hpp"
 #include "test_configs.hpp"

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "controller_if/offline_run.hpp"
-#include "controller_if/pid_controller.hpp"
+#include "controller_if/controller/pid_controller.hpp"
+#include "controller_if/loop/offline_run.hpp"
 #include "rt_core/model.hpp"
 #include "test_configs.hpp"
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "rt_core/amb_force.hpp"
 #include "rt_core/ball_bearing.hpp"
 #include "scratch_directory.hpp"

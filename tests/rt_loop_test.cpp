@@ -27,10 +27,10 @@
 #include <thread>
 #include <vector>
 
-#include "controller_if/periodic_loop.hpp"
-#include "controller_if/rt_clock.hpp"
-#include "controller_if/rt_system.hpp"
-#include "controller_if/timing_stats.hpp"
+#include "controller_if/loop/periodic_loop.hpp"
+#include "controller_if/loop/rt_clock.hpp"
+#include "controller_if/loop/rt_system.hpp"
+#include "controller_if/loop/timing_stats.hpp"
 #include "malloc_guard.hpp"
 
 // Sanitizer builds compile the guard's malloc hooks out (AMBDROP_NO_MALLOC_HOOKS): their runtimes

@@ -12,8 +12,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "controller_if/hil_session.hpp"
-#include "controller_if/offline_run.hpp"
+#include "controller_if/loop/hil_session.hpp"
+#include "controller_if/loop/offline_run.hpp"
 #include "rt_core/amb_force.hpp"
 #include "rt_core/model.hpp"
 #include "scratch_directory.hpp"

@@ -10,11 +10,11 @@
 #include <fstream>
 #include <vector>
 
-#include "controller_if/hil_session.hpp"
-#include "controller_if/internal_controller_link.hpp"
-#include "controller_if/offline_run.hpp"
-#include "controller_if/replay_run.hpp"
-#include "io/event_log.hpp"
+#include "controller_if/controller/internal_controller_link.hpp"
+#include "controller_if/loop/hil_session.hpp"
+#include "controller_if/loop/offline_run.hpp"
+#include "controller_if/loop/replay_run.hpp"
+#include "io/files/event_log.hpp"
 #include "scratch_directory.hpp"
 #include "test_configs.hpp"
 #include "tools/record/run_record_reader.hpp"

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "malloc_guard.hpp"
 #include "rt_core/four_dof_tdb.hpp"
 #include "rt_core/model.hpp"

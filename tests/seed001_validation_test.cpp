@@ -7,7 +7,7 @@
 //    transfers spin energy into the backward whirl: with the rig's friction and ribbon damping
 //    the journal rocks, with mu 0.35 and a tenth of the ribbon (support) damping it whirls
 //    backward (a known failure).
-// The whirl kind is RunSummary's classification (tools/whirl_classifier.hpp) of the journal
+// The whirl kind is RunSummary's classification (tools/fit/whirl_classifier.hpp) of the journal
 // orbit over the second half of the time after the drop.
 // A check marked as a known failure (an open issue explains it) makes its test skip with that
 // reason after every other check has been asserted; AMBDROP_RUN_KNOWN_FAILURES=1 asserts it too.

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "controller_if/portable_random.hpp"
-#include "controller_if/sensor_emulator.hpp"
+#include "controller_if/boundary/portable_random.hpp"
+#include "controller_if/boundary/sensor_emulator.hpp"
 
 namespace ambdrop {
 namespace {

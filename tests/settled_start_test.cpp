@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "controller_if/offline_run.hpp"
-#include "io/config_loader.hpp"
+#include "controller_if/loop/offline_run.hpp"
+#include "io/config/config_loader.hpp"
 #include "rt_core/model.hpp"
 #include "test_configs.hpp"
 #include "tools/fit/measured_record_maker.hpp"

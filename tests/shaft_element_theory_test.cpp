@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "rt_core/fe_rotor.hpp"
 #include "rt_core/natural_frequencies.hpp"
 

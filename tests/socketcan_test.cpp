@@ -2,7 +2,7 @@
 // up; elsewhere every test but the first skips. Run it in the VM harness (../shared/vm):
 //   ../shared/vm/run-in-debian-kernel.sh build/tests/socketcan_test --gtest_color=no
 // The first test runs where CAN is missing and checks that opening says why.
-#include "io/socketcan_bus.hpp"
+#include "io/can/socketcan_bus.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -22,8 +22,8 @@
 #include <vector>
 
 #include "can_filter_cases.hpp"
-#include "io/can_bus_double.hpp"
-#include "io/config_can.hpp"
+#include "io/can/can_bus_double.hpp"
+#include "io/config/config_can.hpp"
 #include "malloc_guard.hpp"
 
 namespace ambdrop {

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "declared_off.hpp"
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "rig.hpp"
 #include "rotor_modes.hpp"
 #include "rt_core/modal_analysis.hpp"

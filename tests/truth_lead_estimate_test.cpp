@@ -15,8 +15,8 @@
 #include <string>
 
 #include "drop_run.hpp"
-#include "io/config_loader.hpp"
-#include "io/measured_record_si.hpp"
+#include "io/config/config_loader.hpp"
+#include "io/files/measured_record_si.hpp"
 #include "record_files.hpp"
 #include "rig.hpp"
 #include "scratch_directory.hpp"

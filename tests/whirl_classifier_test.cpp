@@ -8,8 +8,8 @@
 #include <numbers>
 #include <vector>
 
-#include "tools/run_summary.hpp"
-#include "tools/whirl_classifier.hpp"
+#include "tools/fit/whirl_classifier.hpp"
+#include "tools/validation/run_summary.hpp"
 
 namespace ambdrop {
 namespace {

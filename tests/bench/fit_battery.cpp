@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "controller_if/portable_random.hpp"
-#include "io/measured_csv.hpp"
+#include "controller_if/boundary/portable_random.hpp"
+#include "io/files/measured_csv.hpp"
 #include "rt_core/modal_reduction.hpp"
 #include "test_configs.hpp"
 #include "tools/fit/effect_library.hpp"

@@ -23,12 +23,12 @@
 
 #include <lcm/lcm-cpp.hpp>
 
-#include "controller_if/controller_link.hpp"
-#include "controller_if/pid_controller.hpp"
-#include "controller_if/rt_clock.hpp"
-#include "io/can_bus_double.hpp"
-#include "io/config_can.hpp"
-#include "io/lcm_transport.hpp"
+#include "controller_if/controller/pid_controller.hpp"
+#include "controller_if/loop/controller_link.hpp"
+#include "controller_if/loop/rt_clock.hpp"
+#include "io/can/can_bus_double.hpp"
+#include "io/config/config_can.hpp"
+#include "io/lcm/lcm_transport.hpp"
 #include "rt_core/model.hpp"
 
 namespace ambdrop::bench {
@@ -255,7 +255,7 @@ class CanControllerStandIn {
 // ---------------------------------------------------------------------------------------------
 // LCM
 
-/// The emulator's side of LCM (what tools/lcm_controller_link does): the endpoint's rings.
+/// The emulator's side of LCM (what tools/hil/lcm_controller_link does): the endpoint's rings.
 class BenchLcmLink final : public ControllerLink {
  public:
   BenchLcmLink(LcmEndpoint* endpoint, int sensors) : endpoint_(endpoint), sensors_(sensors) {}

@@ -43,15 +43,15 @@
 #include <thread>
 #include <vector>
 
-#include "controller_if/hil_session.hpp"
-#include "controller_if/internal_controller_link.hpp"
-#include "controller_if/periodic_loop.hpp"
-#include "controller_if/rt_clock.hpp"
-#include "controller_if/rt_system.hpp"
-#include "controller_if/timing_stats.hpp"
+#include "controller_if/controller/internal_controller_link.hpp"
+#include "controller_if/loop/hil_session.hpp"
+#include "controller_if/loop/periodic_loop.hpp"
+#include "controller_if/loop/rt_clock.hpp"
+#include "controller_if/loop/rt_system.hpp"
+#include "controller_if/loop/timing_stats.hpp"
 #include "hil_bench_links.hpp"
-#include "io/config_can.hpp"
-#include "io/config_loader.hpp"
+#include "io/config/config_can.hpp"
+#include "io/config/config_loader.hpp"
 #include "test_configs.hpp"
 
 namespace ambdrop::bench {

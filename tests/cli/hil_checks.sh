@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Issue 17: every `ambdrop hil` run is held to the checks a test bench needs, whatever the
-# controller (tools/hil_checks.hpp), and says so in summary.json's status and `checks` block and
+# controller (tools/cli/hil_checks.hpp), and says so in summary.json's status and `checks` block and
 # in its exit code (4, as `sim --scenario` on a failed expectation):
 #   - the PID rig as configured levitates until its trigger: checks pass, exit 0;
 #   - each AMB fed the other end's sensor: the rotor lands on its TDBs long before the trigger,

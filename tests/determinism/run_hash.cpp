@@ -9,9 +9,9 @@
 #include <cstring>
 #include <string>
 
-#include "controller_if/offline_run.hpp"
-#include "io/config_loader.hpp"
-#include "io/event_log.hpp"
+#include "controller_if/loop/offline_run.hpp"
+#include "io/config/config_loader.hpp"
+#include "io/files/event_log.hpp"
 
 namespace {
 

@@ -1,8 +1,8 @@
 // CAN frames through the PID rig's [can] frame map (configs/jarroux2019_industrial_pid_can.toml)
-// into the emulator's CanControllerLink, over the kernel-faithful double (io/can_bus_double.hpp):
-// the input is a run of raw socket writes (first byte: a classic 16-byte or an FD 72-byte
-// record, then its bytes). The double refuses what the kernel refuses; the link counts what the
-// map cannot decode; a current taken must be finite.
+// into the emulator's CanControllerLink, over the kernel-faithful double
+// (io/can/can_bus_double.hpp): the input is a run of raw socket writes (first byte: a classic
+// 16-byte or an FD 72-byte record, then its bytes). The double refuses what the kernel refuses; the
+// link counts what the map cannot decode; a current taken must be finite.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -13,9 +13,9 @@
 #include <span>
 
 #include "fuzz_support.hpp"
-#include "io/can_bus_double.hpp"
-#include "io/config_loader.hpp"
-#include "tools/can_controller_link.hpp"
+#include "io/can/can_bus_double.hpp"
+#include "io/config/config_loader.hpp"
+#include "tools/hil/can_controller_link.hpp"
 
 namespace {
 

@@ -1,11 +1,11 @@
-// A fuzzed [can] frame map (io/config_can.cpp, io/can_frame_map.cpp): the input is the body of
-// the PID rig's [can] table. It builds a frame map or is a ConfigError, nothing else.
+// A fuzzed [can] frame map (io/config/config_can.cpp, io/can/can_frame_map.cpp): the input is the
+// body of the PID rig's [can] table. It builds a frame map or is a ConfigError, nothing else.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
 #include "fuzz_support.hpp"
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::string head =

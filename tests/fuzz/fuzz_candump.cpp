@@ -7,7 +7,7 @@
 #include <string>
 
 #include "fuzz_support.hpp"
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "rt_core/model.hpp"
 #include "tools/record/candump_record.hpp"
 

@@ -1,5 +1,5 @@
-// LCM messages (io/lcm_types/*.lcm, decoded by lcm-gen's code and io/lcm_transport.cpp): the
-// first byte picks a type; the rest is decoded as it. The controller's two inputs go the
+// LCM messages (io/lcm/lcm_types/*.lcm, decoded by lcm-gen's code and io/lcm/lcm_transport.cpp):
+// the first byte picks a type; the rest is decoded as it. The controller's two inputs go the
 // emulator's whole receive path: published on LCM's in-process memq:// provider and handled by
 // the LcmEndpoint's own subscription (a malformed one is counted, a taken one must be finite
 // and within its bound).
@@ -20,7 +20,7 @@
 #include "ambdrop_lcm/recorded_power_t.hpp"
 #include "ambdrop_lcm/sensor_readings_t.hpp"
 #include "ambdrop_lcm/trigger_t.hpp"
-#include "io/lcm_transport.hpp"
+#include "io/lcm/lcm_transport.hpp"
 #include "tools/record/lcm_guarded_decode.hpp"
 
 namespace {

@@ -1,5 +1,5 @@
-// A measured record as it comes (io/measured_csv.hpp, io/measured_record_si.hpp): read against
-// a [measurement] table with logger units (ms, um, mA, kN, rpm), converted to SI. Any bytes
+// A measured record as it comes (io/files/measured_csv.hpp, io/files/measured_record_si.hpp): read
+// against a [measurement] table with logger units (ms, um, mA, kN, rpm), converted to SI. Any bytes
 // either read or are a MeasuredRecordError naming the file and line; nothing else escapes.
 #include <cstddef>
 #include <cstdint>
@@ -7,8 +7,8 @@
 #include <string>
 
 #include "fuzz_support.hpp"
-#include "io/config_loader.hpp"
-#include "io/measured_record_si.hpp"
+#include "io/config/config_loader.hpp"
+#include "io/files/measured_record_si.hpp"
 
 namespace {
 

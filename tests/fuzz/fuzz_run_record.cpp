@@ -8,9 +8,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "controller_if/replay_run.hpp"
+#include "controller_if/loop/replay_run.hpp"
 #include "fuzz_support.hpp"
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "rt_core/model.hpp"
 #include "tools/fit/run_record_measurement.hpp"
 #include "tools/record/run_record_reader.hpp"

@@ -1,4 +1,4 @@
-// `--set` overrides (io/config_overrides.hpp) on the PID rig: each line of the input is one
+// `--set` overrides (io/config/config_overrides.hpp) on the PID rig: each line of the input is one
 // override; the config loads or the overrides are refused with a ConfigError, nothing else.
 #include <cstddef>
 #include <cstdint>
@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "fuzz_support.hpp"
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::string rig =

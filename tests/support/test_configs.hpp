@@ -2,8 +2,8 @@
 #include <string>
 #include <vector>
 
-#include "io/config_loader.hpp"
-#include "io/config_variants.hpp"
+#include "io/config/config_loader.hpp"
+#include "io/config/config_variants.hpp"
 #include "rt_core/model_params.hpp"
 
 namespace ambdrop::testing {

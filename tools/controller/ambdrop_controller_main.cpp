@@ -16,13 +16,13 @@
 
 #include "ambdrop_lcm/amb_currents_t.hpp"
 #include "ambdrop_lcm/sensor_readings_t.hpp"
-#include "controller_if/hil_session.hpp"
-#include "controller_if/pid_controller.hpp"
-#include "io/can_controller_view.hpp"
-#include "io/config_loader.hpp"
-#include "io/socketcan_bus.hpp"
+#include "controller_if/controller/pid_controller.hpp"
+#include "controller_if/loop/hil_session.hpp"
+#include "io/can/can_controller_view.hpp"
+#include "io/can/socketcan_bus.hpp"
+#include "io/config/config_loader.hpp"
 #include "rt_core/model.hpp"
-#include "tools/can_pid_responder.hpp"
+#include "tools/hil/can_pid_responder.hpp"
 
 namespace {
 

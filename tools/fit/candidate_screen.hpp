@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 #include <limits>
 
-#include "io/config_variants.hpp"
+#include "io/config/config_variants.hpp"
 #include "tools/fit/effect_library.hpp"
 #include "tools/fit/record_cost.hpp"
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "controller_if/run_record.hpp"
+#include "controller_if/loop/run_record.hpp"
 #include "rt_core/model_params.hpp"
 
 namespace ambdrop {

@@ -7,7 +7,7 @@
 
 #include "rt_core/tdb_common.hpp"
 #include "tools/fit/noise_floor.hpp"
-#include "tools/whirl_classifier.hpp"
+#include "tools/fit/whirl_classifier.hpp"
 
 namespace ambdrop {
 namespace {

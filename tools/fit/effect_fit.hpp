@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "io/config_variants.hpp"
+#include "io/config/config_variants.hpp"
 #include "tools/fit/effect_library.hpp"
 #include "tools/fit/record_cost.hpp"
 

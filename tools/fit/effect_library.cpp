@@ -9,7 +9,7 @@
 #include <tuple>
 #include <utility>
 
-#include "io/config_variants.hpp"
+#include "io/config/config_variants.hpp"
 #include "rt_core/limits.hpp"
 #include "rt_core/model.hpp"
 #include "tools/fit/key_effects.hpp"
@@ -408,8 +408,8 @@ Effect SensorLagOf(const std::vector<const SensorParams*>& sensors, double sampl
   e.family = "sensor_lag";
   e.description = std::move(description);
   // The filter as its time constant: 0 is no filter, and the cost is smooth through it.
-  // The delay is whole samples of the sensor (controller_if/sensor_emulator.cpp), at most what
-  // its ring holds: a rig without a controller samples at every step.
+  // The delay is whole samples of the sensor (controller_if/boundary/sensor_emulator.cpp), at most
+  // what its ring holds: a rig without a controller samples at every step.
   const double longest = std::min(1e-3, (kMaxSensorDelaySamples - 1) * sample_s);
   // A declared lag is refitted from its declared delay and filter.
   const double d0 = s.lag.enabled ? std::min(s.lag.delay_s, longest) : 0.0;

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "io/config_loader.hpp"
-#include "io/config_measurement.hpp"
-#include "io/config_variants.hpp"
+#include "io/config/config_loader.hpp"
+#include "io/config/config_measurement.hpp"
+#include "io/config/config_variants.hpp"
 #include "rt_core/model_params.hpp"
 
 namespace ambdrop {
@@ -43,8 +43,8 @@ struct Effect {
   std::vector<double> probe;
   /// The `--set` overrides that switch it on with these parameter values
   /// ("tdb.de.misalignment.x_m=1.2e-05"): applied to the declared config through the same path
-  /// as the command line's --set (io/config_variants.hpp), so the config's own checks hold, and
-  /// printed by the report as they are. One effect may set several keys (a lag's time constant
+  /// as the command line's --set (io/config/config_variants.hpp), so the config's own checks hold,
+  /// and printed by the report as they are. One effect may set several keys (a lag's time constant
   /// is its filter's cutoff).
   std::function<std::vector<std::string>(const std::vector<double>&)> overrides;
   /// One of the many "the declared value is off" candidates made from the key registry

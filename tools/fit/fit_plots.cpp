@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "io/json_writer.hpp"
+#include "io/files/json_writer.hpp"
 #include "tools/fit/svg_plot.hpp"
 
 namespace ambdrop {

@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "io/measured_csv.hpp"
+#include "io/files/measured_csv.hpp"
 
 namespace ambdrop {
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <utility>
 
-#include "io/json_writer.hpp"
+#include "io/files/json_writer.hpp"
 #include "tools/fit/fit_plots.hpp"
 #include "tools/fit/prediction_csv.hpp"
 

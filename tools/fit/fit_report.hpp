@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "io/json_writer.hpp"
+#include "io/files/json_writer.hpp"
 #include "tools/fit/effect_selection.hpp"
 #include "tools/fit/fit_step.hpp"
 #include "tools/fit/model_discrepancy.hpp"

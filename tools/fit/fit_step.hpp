@@ -6,8 +6,8 @@
 // left (its step sensitivity is taken at half the chosen step).
 #include <string>
 
-#include "io/config_measurement.hpp"
-#include "io/measured_csv.hpp"
+#include "io/config/config_measurement.hpp"
+#include "io/files/measured_csv.hpp"
 #include "rt_core/model_params.hpp"
 #include "tools/fit/simulate_on_record.hpp"
 

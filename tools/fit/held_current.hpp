@@ -10,7 +10,7 @@
 //    the cut itself. There the last levitated sample was 0.223 A and the current that then
 //    decayed 0.320 A.
 // The samples at and just after the trigger say what was held: the decay starts from it.
-#include "io/measured_csv.hpp"
+#include "io/files/measured_csv.hpp"
 #include "rt_core/amb_params.hpp"
 
 namespace ambdrop {

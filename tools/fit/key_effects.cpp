@@ -4,7 +4,7 @@
 #include <cmath>
 #include <utility>
 
-#include "io/config_variants.hpp"
+#include "io/config/config_variants.hpp"
 
 namespace ambdrop {
 namespace {

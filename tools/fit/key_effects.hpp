@@ -1,12 +1,12 @@
 #pragma once
 // Effects of the kind "the declared value is off", made from the key registry
-// (io/config_keys.hpp) instead of written by hand: one key, or the same key on several items
+// (io/config/config_keys.hpp) instead of written by hand: one key, or the same key on several items
 // (every TDB's race inertia) moved together. Each is an Effect like the library's others: its
 // parameter maps to `--set` lines of those keys.
 #include <string>
 #include <vector>
 
-#include "io/config_keys.hpp"
+#include "io/config/config_keys.hpp"
 #include "tools/fit/effect_library.hpp"
 
 namespace ambdrop {

@@ -21,8 +21,8 @@
 
 #include <Eigen/Core>
 
-#include "io/config_measurement.hpp"
-#include "io/measured_csv.hpp"
+#include "io/config/config_measurement.hpp"
+#include "io/files/measured_csv.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/state.hpp"
 #include "tools/fit/simulate_on_record.hpp"

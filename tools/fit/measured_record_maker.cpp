@@ -7,9 +7,9 @@
 #include <set>
 #include <vector>
 
-#include "controller_if/offline_run.hpp"
-#include "controller_if/portable_random.hpp"
-#include "controller_if/sensor_emulator.hpp"
+#include "controller_if/boundary/portable_random.hpp"
+#include "controller_if/boundary/sensor_emulator.hpp"
+#include "controller_if/loop/offline_run.hpp"
 #include "rt_core/model.hpp"
 #include "tools/fit/current_sampler.hpp"
 
@@ -97,7 +97,7 @@ double ObservedValue(const MeasurementChannel& c, const Observation& obs,
     case MeasuredQuantity::kRotorSpeed:
       return obs.spin_speed_rad_s;
     case MeasuredQuantity::kTdbSupportForce:
-      // What a load cell under the TDB reads, untared (io/config_measurement.hpp).
+      // What a load cell under the TDB reads, untared (io/config/config_measurement.hpp).
       return c.axis == 0 ? obs.tdb[c.index].support_x_N : obs.tdb[c.index].support_y_N;
     case MeasuredQuantity::kCurrent:
     case MeasuredQuantity::kControllerCommand:

@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "io/config_measurement.hpp"
-#include "io/measured_csv.hpp"
+#include "io/config/config_measurement.hpp"
+#include "io/files/measured_csv.hpp"
 #include "rt_core/model_params.hpp"
 
 namespace ambdrop {
@@ -60,8 +60,8 @@ std::int64_t StepsPerSample(const SimulationParams& simulation, double rate_Hz);
 /// rate, a model that cannot be built, no row at or after from_s, two columns of one name).
 SyntheticMeasurement MakeMeasuredRecord(const ModelParams& truth, const MeasureOptions& options);
 
-/// The [measurement] table text (io/config_measurement.hpp) for an analysed config of the same
-/// rig; names are the truth config's sensors, AMBs and TDBs.
+/// The [measurement] table text (io/config/config_measurement.hpp) for an analysed config of the
+/// same rig; names are the truth config's sensors, AMBs and TDBs.
 std::string MeasurementTableToml(const ModelParams& truth, const MeasurementParams& measurement);
 
 }  // namespace ambdrop

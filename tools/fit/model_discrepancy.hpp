@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "io/config_measurement.hpp"
-#include "io/measured_csv.hpp"
+#include "io/config/config_measurement.hpp"
+#include "io/files/measured_csv.hpp"
 #include "rt_core/model_params.hpp"
 #include "tools/fit/effect_selection.hpp"
 #include "tools/fit/residuals.hpp"

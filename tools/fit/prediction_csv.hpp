@@ -1,8 +1,8 @@
 #pragma once
 #include <string>
 
-#include "io/config_measurement.hpp"
-#include "io/measured_csv.hpp"
+#include "io/config/config_measurement.hpp"
+#include "io/files/measured_csv.hpp"
 #include "tools/fit/simulate_on_record.hpp"
 
 namespace ambdrop {

@@ -17,8 +17,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "io/config_measurement.hpp"
-#include "io/measured_csv.hpp"
+#include "io/config/config_measurement.hpp"
+#include "io/files/measured_csv.hpp"
 #include "rt_core/model_params.hpp"
 #include "tools/fit/simulate_on_record.hpp"
 

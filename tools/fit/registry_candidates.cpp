@@ -7,7 +7,7 @@
 #include <map>
 #include <utility>
 
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 
 #include "tools/fit/key_effects.hpp"
 

@@ -3,12 +3,12 @@
 // mostly a number the declared model already has, and it is off (a clearance worn larger, a
 // bias trimmed, a race heavier than drawn, a sensor's gain drifted): so every physical key of
 // the config is a candidate "the declared value is off", made from the key registry
-// (io/config_keys.hpp) rather than by hand, beside the library's hand-made families.
+// (io/config/config_keys.hpp) rather than by hand, beside the library's hand-made families.
 #include <string>
 #include <vector>
 
-#include "io/config_loader.hpp"
-#include "io/config_variants.hpp"
+#include "io/config/config_loader.hpp"
+#include "io/config/config_variants.hpp"
 #include "tools/fit/effect_library.hpp"
 
 namespace ambdrop {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "io/config_measurement.hpp"
-#include "io/measured_csv.hpp"
+#include "io/config/config_measurement.hpp"
+#include "io/files/measured_csv.hpp"
 #include "tools/fit/drop_features.hpp"
 #include "tools/fit/simulate_on_record.hpp"
 

@@ -4,8 +4,8 @@
 // sensor samples the run sent, the columns are named as `ambdrop measure` names them
 // (tools/fit/measured_record_maker.hpp), and the [measurement] table that describes them comes
 // with it.
-#include "io/config_measurement.hpp"
-#include "io/measured_csv.hpp"
+#include "io/config/config_measurement.hpp"
+#include "io/files/measured_csv.hpp"
 #include "rt_core/model_params.hpp"
 #include "tools/record/run_record_reader.hpp"
 

@@ -9,12 +9,12 @@
 #include <optional>
 #include <stdexcept>
 
-#include "controller_if/hil_session.hpp"
-#include "controller_if/pid_controller.hpp"
-#include "controller_if/power_state.hpp"
-#include "controller_if/sensor_emulator.hpp"
-#include "controller_if/settled_start.hpp"
-#include "controller_if/state_dump.hpp"
+#include "controller_if/boundary/power_state.hpp"
+#include "controller_if/boundary/sensor_emulator.hpp"
+#include "controller_if/controller/pid_controller.hpp"
+#include "controller_if/loop/hil_session.hpp"
+#include "controller_if/loop/settled_start.hpp"
+#include "controller_if/loop/state_dump.hpp"
 #include "rt_core/amb_force.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/power_loss_drive.hpp"

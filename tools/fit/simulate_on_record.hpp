@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "io/config_measurement.hpp"
-#include "io/measured_csv.hpp"
+#include "io/config/config_measurement.hpp"
+#include "io/files/measured_csv.hpp"
 #include "rt_core/model_params.hpp"
 #include "rt_core/simulator.hpp"
 #include "tools/fit/reduced_rotor_cache.hpp"

@@ -7,7 +7,7 @@
 #include <limits>
 #include <unsupported/Eigen/LevenbergMarquardt>
 
-#include "controller_if/offline_run.hpp"
+#include "controller_if/loop/offline_run.hpp"
 #include "rt_core//model.hpp"
 #include "rt_core/tdb_common.hpp"
 

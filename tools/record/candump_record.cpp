@@ -8,8 +8,8 @@
 #include <optional>
 #include <stdexcept>
 
-#include "controller_if/hil_session.hpp"
-#include "io/can_controller_view.hpp"
+#include "controller_if/loop/hil_session.hpp"
+#include "io/can/can_controller_view.hpp"
 
 namespace ambdrop {
 namespace {

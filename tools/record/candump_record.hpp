@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "controller_if/run_record.hpp"
-#include "io/config_can.hpp"
+#include "controller_if/loop/run_record.hpp"
+#include "io/config/config_can.hpp"
 #include "rt_core/model.hpp"
 
 namespace ambdrop {

@@ -11,7 +11,7 @@
 
 namespace ambdrop {
 
-/// Leading string fields of the record types that have them (io/lcm_types/).
+/// Leading string fields of the record types that have them (io/lcm/lcm_types/).
 inline constexpr int kRecordHeaderStrings = 5;  ///< record_header_t
 inline constexpr int kRecordFooterStrings = 1;  ///< record_footer_t
 

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "controller_if/current_profile.hpp"
-#include "io/config_loader.hpp"
-#include "io/profile_config.hpp"
+#include "controller_if/controller/current_profile.hpp"
+#include "io/config/config_loader.hpp"
+#include "io/config/profile_config.hpp"
 #include "rt_core/limits.hpp"
 
 namespace ambdrop {

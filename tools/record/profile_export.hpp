@@ -8,7 +8,7 @@
 namespace ambdrop {
 
 struct ProfileExport {
-  std::string toml;                  ///< the rig config (io/profile_config.hpp)
+  std::string toml;                  ///< the rig config (io/config/profile_config.hpp)
   std::size_t recorded_samples = 0;  ///< current samples in the record (start included)
   std::size_t points = 0;            ///< profile points written per AMB
   double max_error_A = 0.0;          ///< largest interpolation error left by the decimation

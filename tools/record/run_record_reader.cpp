@@ -14,7 +14,7 @@
 #include "ambdrop_lcm/recorded_input_t.hpp"
 #include "ambdrop_lcm/recorded_power_t.hpp"
 #include "ambdrop_lcm/sensor_readings_t.hpp"
-#include "io/event_log.hpp"
+#include "io/files/event_log.hpp"
 #include "tools/record/lcm_guarded_decode.hpp"
 #include "tools/record/record_channels.hpp"
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "controller_if/run_record.hpp"
+#include "controller_if/loop/run_record.hpp"
 #include "rt_core/limits.hpp"
 #include "tools/record/run_record_writer.hpp"
 

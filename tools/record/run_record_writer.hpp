@@ -7,8 +7,8 @@
 #include <thread>
 #include <variant>
 
-#include "controller_if/run_record.hpp"
-#include "io/event_log.hpp"
+#include "controller_if/loop/run_record.hpp"
+#include "io/files/event_log.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/spsc_ring.hpp"
 

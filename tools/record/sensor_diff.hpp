@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "controller_if/run_record.hpp"
-#include "io/json_writer.hpp"
+#include "controller_if/loop/run_record.hpp"
+#include "io/files/json_writer.hpp"
 
 namespace ambdrop {
 

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <string>
 
-#include "controller_if/run_record.hpp"
-#include "io/event_log.hpp"
+#include "controller_if/loop/run_record.hpp"
+#include "io/files/event_log.hpp"
 
 namespace ambdrop {
 

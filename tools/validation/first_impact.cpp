@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "controller_if/offline_run.hpp"
-#include "io/config_loader.hpp"
+#include "controller_if/loop/offline_run.hpp"
+#include "io/config/config_loader.hpp"
 #include "rt_core/model.hpp"
 
 namespace ambdrop {

@@ -1,9 +1,9 @@
 #include "tools/validation/offline_drop.hpp"
 
-#include "controller_if/offline_run.hpp"
-#include "io/config_loader.hpp"
+#include "controller_if/loop/offline_run.hpp"
+#include "io/config/config_loader.hpp"
 #include "rt_core/model.hpp"
-#include "tools/run_summary.hpp"
+#include "tools/validation/run_summary.hpp"
 
 namespace ambdrop {
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "tools/fit/whirl_classifier.hpp"
 #include "tools/validation/tdb_peaks.hpp"
-#include "tools/whirl_classifier.hpp"
 
 namespace ambdrop {
 

@@ -5,8 +5,8 @@
 
 #include <map>
 
-#include "controller_if/offline_run.hpp"
-#include "io/config_loader.hpp"
+#include "controller_if/loop/offline_run.hpp"
+#include "io/config/config_loader.hpp"
 #include "rt_core/model.hpp"
 #include "tools/fit/spinup_fit.hpp"
 #include "tools/validation/first_impact.hpp"

@@ -3,7 +3,7 @@
 // ribbon (Eq. (1)) and the quadratic bearing law (configs/jarroux2016_rigid.toml).
 #include <fmt/format.h>
 
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "tools/validation/offline_drop.hpp"
 #include "tools/validation/validation_cases.hpp"
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "rt_core/catcher_bearing_tdb.hpp"
 #include "tools/validation/orbit_rms.hpp"
 #include "tools/validation/stepped_drop.hpp"

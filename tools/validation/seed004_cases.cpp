@@ -6,7 +6,7 @@
 // 12 000 rpm, lower than the rigid mount and than its neighbours on the decade grid.
 #include <fmt/format.h>
 
-#include "io/config_loader.hpp"
+#include "io/config/config_loader.hpp"
 #include "tools/validation/stepped_drop.hpp"
 #include "tools/validation/tdb_peaks.hpp"
 #include "tools/validation/validation_cases.hpp"

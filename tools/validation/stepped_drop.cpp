@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "controller_if/state_dump.hpp"
+#include "controller_if/loop/state_dump.hpp"
 
 namespace ambdrop {
 

@@ -1,0 +1,82 @@
+#include "controller_if/boundary/sensor_emulator.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace ambdrop {
+
+SensorEmulator::SensorEmulator(const std::vector<SensorParams>& sensors, double period_s)
+    : params_(sensors), channels_(sensors.size()) {
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    const SensorParams& p = sensors[i];
+    // In samples as a double first: llround is undefined beyond int64, int beyond 2^31.
+    const double samples = p.lag.enabled ? p.lag.delay_s / period_s : 0.0;
+    if (!(samples >= 0.0 && samples < kMaxSensorDelaySamples - 0.5)) {
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "sensor.%s.lag.delay_s = %.6g s is %.6g samples of %.6g s, at most %d",
+                    p.name.c_str(), p.lag.delay_s, samples, period_s, kMaxSensorDelaySamples - 1);
+      throw std::invalid_argument(text);
+    }
+    const int delay = static_cast<int>(std::llround(samples));
+    // Backward-Euler first-order low-pass: y += a (x - y), a = dt / (dt + 1/(2 pi fc)).
+    filter_alpha_[i] = 1.0;
+    if (p.lag.enabled && p.lag.cutoff_Hz > 0.0) {
+      const double tau = 1.0 / (2.0 * std::numbers::pi * p.lag.cutoff_Hz);
+      filter_alpha_[i] = period_s / (period_s + tau);
+    }
+    for (int axis = 0; axis < 2; ++axis) {
+      Channel& c = channels_[i][axis];
+      c.delay_samples = delay;
+      // One independent stream per sensor axis from the sensor's seed.
+      c.noise = PortableRandom(p.noise.seed * 2 + static_cast<std::uint64_t>(axis));
+    }
+  }
+}
+
+void SensorEmulator::Sample(const Observation& obs, SensorReadings* out) noexcept {
+  const double phi = obs.spin_angle_rad;
+  for (std::size_t i = 0; i < params_.size(); ++i) {
+    const SensorParams& p = params_[i];
+    // Runout is one pattern on the surface: the y sensor sees it a quarter turn later.
+    double runout[2] = {0.0, 0.0};
+    if (p.runout.enabled) {
+      const double a1 = p.runout.amplitude_1x_m, a2 = p.runout.amplitude_2x_m;
+      runout[0] = a1 * std::cos(phi + p.runout.phase_1x_rad) +
+                  a2 * std::cos(2.0 * phi + p.runout.phase_2x_rad);
+      runout[1] = a1 * std::sin(phi + p.runout.phase_1x_rad) -
+                  a2 * std::cos(2.0 * phi + p.runout.phase_2x_rad);
+    }
+    for (int axis = 0; axis < 2; ++axis) {
+      Channel& c = channels_[i][axis];
+      double v =
+          p.AxisGain(axis) * (obs.sensor_xy_m[i][axis] + runout[axis]) + p.AxisOffset_m(axis);
+      // Transport delay.
+      if (c.delay_samples > 0) {
+        if (!c.primed) c.delay_line.fill(v);
+        c.delay_line[c.head] = v;
+        const int tail =
+            (c.head - c.delay_samples + kMaxSensorDelaySamples) % kMaxSensorDelaySamples;
+        c.head = (c.head + 1) % kMaxSensorDelaySamples;
+        v = c.delay_line[tail];
+      }
+      // Electronics low-pass.
+      if (!c.primed) c.filtered = v;
+      c.filtered += filter_alpha_[i] * (v - c.filtered);
+      c.primed = true;
+      v = c.filtered;
+      if (p.noise.enabled) v += p.noise.std_dev_m * c.noise.StandardNormalApprox();
+      if (p.quantisation_m > 0.0) v = p.quantisation_m * std::nearbyint(v / p.quantisation_m);
+      out->reading_m[i][axis] = v;
+      out->counts[i][axis] =
+          p.output == SensorOutput::kCounts
+              ? static_cast<std::int64_t>(std::llround(v * p.counts_per_m + p.counts_offset))
+              : 0;
+    }
+  }
+}
+
+}  // namespace ambdrop

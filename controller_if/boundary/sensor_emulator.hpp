@@ -1,0 +1,42 @@
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "controller_if/boundary/portable_random.hpp"
+#include "rt_core/limits.hpp"
+#include "rt_core/model_params.hpp"
+#include "rt_core/simulator.hpp"
+
+namespace ambdrop {
+
+/// One sample of every sensor as the controller receives it.
+struct SensorReadings {
+  std::array<std::array<double, 2>, kMaxSensors> reading_m{};     ///< (x, y), metres
+  std::array<std::array<std::int64_t, 2>, kMaxSensors> counts{};  ///< when output = counts
+};
+
+/// Turns the rotor's true displacement at each sensor plane into what the sensor electronics
+/// deliver, sample by sample at the controller rate (SensorParams says the model). All state
+/// (delay lines, filter states, noise generators) lives in the object: copy it to copy the run.
+/// Sample() is allocation-free.
+class SensorEmulator {
+ public:
+  SensorEmulator(const std::vector<SensorParams>& sensors, double sample_period_s);
+  void Sample(const Observation& observation, SensorReadings* out) noexcept;
+
+ private:
+  struct Channel {
+    std::array<double, kMaxSensorDelaySamples> delay_line{};
+    int delay_samples = 0;
+    int head = 0;
+    double filtered = 0.0;
+    bool primed = false;
+    PortableRandom noise;
+  };
+  std::vector<SensorParams> params_;
+  std::vector<std::array<Channel, 2>> channels_;
+  double filter_alpha_[kMaxSensors]{};  ///< per sensor, first-order low-pass coefficient
+};
+
+}  // namespace ambdrop

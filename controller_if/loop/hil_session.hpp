@@ -1,0 +1,114 @@
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "controller_if/boundary/controller_watchdog.hpp"
+#include "controller_if/boundary/power_state.hpp"
+#include "controller_if/boundary/sensor_emulator.hpp"
+#include "controller_if/loop/controller_link.hpp"
+#include "controller_if/loop/run_record.hpp"
+#include "rt_core/model.hpp"
+#include "rt_core/simulator.hpp"
+#include "rt_core/spsc_ring.hpp"
+
+namespace ambdrop {
+
+struct HilOptions {
+  double watchdog_timeout_s = 5e-3;  ///< controller silence that trips the watchdog
+  SilenceAction silence_action = SilenceAction::kHold;
+  RunRecorder* recorder = nullptr;  ///< receives every input, power event, sample and state
+  /// The currents the rotor starts levitated on (at their powered equilibrium) and that stay
+  /// applied until the controller's first currents arrive; null: those that carry the static
+  /// load. A profile-driven rig starts on its profile's first currents, as `ambdrop sim` does.
+  const ControlInput* initial_input = nullptr;
+};
+
+/// Counters of a HIL run (read after it, or from another thread as a snapshot).
+struct HilCounters {
+  std::int64_t periods = 0;
+  std::int64_t currents_received = 0;
+  std::int64_t sensor_samples_sent = 0;
+  std::int64_t power_events = 0;
+  std::int64_t first_power_event_step = -1;  ///< step the first power event applied at; -1: none
+  std::int64_t watchdog_hold_periods = 0;
+  std::int64_t watchdog_zero_periods = 0;
+  std::int64_t observations_dropped = 0;  ///< output ring full
+  /// Periods the physics advanced without a controller exchange, to catch up after the loop
+  /// missed deadlines (see Period).
+  std::int64_t catch_up_periods = 0;
+};
+
+enum class HilStop { kRunning, kDuration, kWatchdog, kDiverged };
+
+/// One HIL run: each controller period it takes the controller's newest currents, applies
+/// power events from the trigger sources, advances the physics by its whole number of steps
+/// with the currents held, and sends the emulated sensor readings back. Period() is the
+/// real-time body: noexcept, allocation-free. The same session runs on a real or a virtual
+/// clock; with the in-process controller on a virtual clock it reproduces `ambdrop sim`.
+class HilSession {
+ public:
+  using OutputRing = SpscRing<Observation, 8192>;
+
+  HilSession(const Model& model, ControllerLink* link, std::vector<TriggerSource*> triggers,
+             const HilOptions& options, OutputRing* outputs = nullptr);
+
+  /// Sends the first sensor sample (before period 0) and starts the watchdog at `now_ns`.
+  void Start(std::int64_t now_ns) noexcept;
+  /// One controller period at clock time `now_ns`; false when the run must end (stop()).
+  /// `missed_before` (LoopTick::missed_before): periods the loop skipped just before this one.
+  /// The physics advances through each of them before this one, so simulated time keeps up with
+  /// wall time and the controller next sees a rotor where the elapsed time puts it: power events
+  /// fire at their period, the newest currents are held, and the sensor emulator takes its sample
+  /// (its delay line and filter count samples) but nothing is sent. Only this period's sample
+  /// goes out: the skipped ones are stale by now, and a burst of them would arrive at the
+  /// controller together and upset its sample-by-sample timing (derivative terms, CAN bus load).
+  bool Period(std::int64_t now_ns, std::int64_t missed_before = 0) noexcept;
+
+  HilStop stop() const noexcept { return stop_; }
+  /// What the step reported when the run diverged (kOk otherwise); see DescribeFailure.
+  StepStatus step_status() const noexcept { return step_status_; }
+  const State& state() const noexcept { return state_; }
+  const HilCounters& counters() const noexcept { return counters_; }
+  const ControllerWatchdog& watchdog() const noexcept { return watchdog_; }
+  std::int64_t substeps() const noexcept { return substeps_; }
+  double period_s() const noexcept { return substeps_ * model_.params.simulation.step_s; }
+
+ private:
+  void SendSensors() noexcept;
+  void PushObservation() noexcept;
+  // Power events due at `step`, the held currents and the power state into input_.
+  void PrepareInput(std::int64_t step, double time_s) noexcept;
+  // The physics over one period with input_ held; false (stop_ set) if it diverged.
+  bool AdvancePhysics() noexcept;
+  // One skipped period (see Period); false when the run must end.
+  bool CatchUpPeriod() noexcept;
+
+  const Model& model_;
+  ControllerLink* link_;
+  std::vector<TriggerSource*> triggers_;
+  OutputRing* outputs_;
+  Simulator sim_;
+  SensorEmulator sensors_;
+  PowerState power_;
+  ControllerWatchdog watchdog_;
+  std::int64_t substeps_;
+  std::int64_t output_every_;
+  State state_;
+  ControlInput input_;
+  ControlInput initial_input_;
+  CurrentsMessage latest_;
+  Observation obs_;
+  SensorReadings readings_;
+  HilCounters counters_;
+  RunRecorder* recorder_;
+  bool watchdog_zeroed_ = false;  // the zero currents of this silence are recorded
+  RecordedInput pending_record_;  // this period's input, recorded once the power events are
+  bool pending_record_valid_ = false;
+  HilStop stop_ = HilStop::kRunning;
+  StepStatus step_status_ = StepStatus::kOk;
+};
+
+/// Physics steps per controller period; throws if the period is not a whole number of steps.
+std::int64_t ControllerSubsteps(const Model& model);
+
+}  // namespace ambdrop

@@ -1,0 +1,303 @@
+#include <climits>
+#include <numbers>
+
+#include "io/config/config_ball_bearing_tdb.hpp"
+#include "io/config/config_catcher_bearing.hpp"
+#include "io/config/config_readers.hpp"
+#include "rt_core/limits.hpp"
+
+namespace ambdrop::config_detail {
+namespace {
+
+HuntCrossleyParams ReadHuntCrossley(const TableReader& four_dof, std::string_view key) {
+  const TableReader table = four_dof.Table(key);
+  table.AllowOnly({"stiffness_N_per_m_n", "exponent", "damping_s_per_m"});
+  HuntCrossleyParams params;
+  params.stiffness_N_per_m_n = table.Number("stiffness_N_per_m_n", Positive());
+  params.exponent = table.Number("exponent", InRange(1.0, 2.0));
+  params.damping_s_per_m = table.Number("damping_s_per_m", NonNegative());
+  return params;
+}
+
+// The outer race / housing contact, switchable off (enabled = false: no housing stop). A disabled
+// table does not demand its numbers; given, they are still checked.
+HuntCrossleyParams ReadHousingContact(const TableReader& four_dof, bool* enabled) {
+  const TableReader table = four_dof.Table("housing_contact");
+  table.AllowOnly({"enabled", "stiffness_N_per_m_n", "exponent", "damping_s_per_m"});
+  *enabled = table.Bool("enabled", true);
+  HuntCrossleyParams params;
+  if (*enabled) {
+    params.stiffness_N_per_m_n = table.Number("stiffness_N_per_m_n", Positive());
+    params.exponent = table.Number("exponent", InRange(1.0, 2.0));
+    params.damping_s_per_m = table.Number("damping_s_per_m", NonNegative());
+  } else {
+    params.stiffness_N_per_m_n = table.Number("stiffness_N_per_m_n", Positive(), 0.0);
+    params.exponent = table.Number("exponent", InRange(1.0, 2.0), params.exponent);
+    params.damping_s_per_m = table.Number("damping_s_per_m", NonNegative(), 0.0);
+  }
+  return params;
+}
+
+BallBearingParams ReadBallBearing(const TableReader& four_dof) {
+  const TableReader table = four_dof.Table("bearing");
+  table.AllowOnly({"balls", "contact_angle_rad", "inner_contact_stiffness_N_per_m1_5",
+                   "outer_contact_stiffness_N_per_m1_5", "operating_load_N", "damping_factor",
+                   "quadratic_stiffness_N_per_m2"});
+  BallBearingParams params;
+  if (!table.Has("balls")) table.FailMissing("balls", "an integer >= 1");
+  params.balls = table.Integer("balls", 1, INT_MAX, 0);
+  params.contact_angle_rad =
+      table.Number("contact_angle_rad", InHalfOpenRange(0.0, std::numbers::pi / 2.0));
+  params.inner_contact_stiffness_N_per_m1_5 =
+      table.Number("inner_contact_stiffness_N_per_m1_5", Positive());
+  params.outer_contact_stiffness_N_per_m1_5 =
+      table.Number("outer_contact_stiffness_N_per_m1_5", Positive());
+  params.operating_load_N = table.Number("operating_load_N", Positive());
+  params.damping_factor = table.Number("damping_factor", NonNegative());
+  // Jarroux 2016 (seed 001), Sec. 2: kq of the quadratic law; absent, the secant through the
+  // Hertz operating point.
+  params.quadratic_stiffness_N_per_m2 =
+      table.Number("quadratic_stiffness_N_per_m2", Positive(), 0.0);
+  return params;
+}
+
+KelvinVoigtRibbonParams ReadKelvinVoigt(const TableReader& table) {
+  table.AllowOnly({"stiffness_N_per_m", "damping_N_s_per_m"});
+  KelvinVoigtRibbonParams params;
+  params.stiffness_N_per_m = table.Number("stiffness_N_per_m", Positive());
+  params.damping_N_s_per_m = table.Number("damping_N_s_per_m", NonNegative());
+  return params;
+}
+
+DahlRibbonParams ReadDahl(const TableReader& table) {
+  table.AllowOnly({"slipping_threshold_N", "threshold_scale", "slipping_stiffness_N_per_m",
+                   "beta_per_m", "upper_hardening_N", "upper_hardening_rate_per_m",
+                   "lower_hardening_N", "lower_hardening_rate_per_m"});
+  DahlRibbonParams params;
+  params.slipping_threshold_N = table.Number("slipping_threshold_N", NonNegative());
+  params.threshold_scale = table.Number("threshold_scale", NonNegative(), params.threshold_scale);
+  params.slipping_stiffness_N_per_m = table.Number("slipping_stiffness_N_per_m", NonNegative());
+  params.beta_per_m = table.Number("beta_per_m", Positive());
+  params.upper_hardening_N = table.Number("upper_hardening_N", NonNegative());
+  params.upper_hardening_rate_per_m = table.Number("upper_hardening_rate_per_m", NonNegative());
+  params.lower_hardening_N = table.Number("lower_hardening_N", NonNegative());
+  params.lower_hardening_rate_per_m = table.Number("lower_hardening_rate_per_m", NonNegative());
+  return params;
+}
+
+// Cross-coupled ribbon, Jarroux 2016 (seed 001) Eq. (1).
+CrossCoupledRibbonParams ReadCrossCoupled(const TableReader& table) {
+  table.AllowOnly(
+      {"stiffness_N_per_m", "cross_coupling", "damping_N_s_per_m", "sign_regularisation_s_per_m"});
+  CrossCoupledRibbonParams params;
+  params.stiffness_N_per_m = table.Number("stiffness_N_per_m", Positive());
+  params.cross_coupling = table.Number("cross_coupling", NonNegative());
+  params.damping_N_s_per_m = table.Number("damping_N_s_per_m", NonNegative());
+  params.sign_regularisation_s_per_m =
+      table.Number("sign_regularisation_s_per_m", Positive(), params.sign_regularisation_s_per_m);
+  return params;
+}
+
+// Jarroux 2019 Eq. (12); with `ribbon` = "dahl" or "cross_coupled" a ribbon law in series with
+// the bearing (ContactLawTdb), read by the 4-DOF TDB's ribbon readers from the table of that
+// name. As there, the selected ribbon's table is required and the other one checked if given.
+ContactLawParams ReadContactLaw(const TableReader& tdb) {
+  const TableReader table = tdb.Table("contact_law");
+  table.AllowOnly({"bearing_stiffness_N_per_m", "bearing_damping_N_s_per_m",
+                   "ribbon_stiffness_N_per_m", "ribbon_damping_N_s_per_m", "ribbon_crushing_m",
+                   "ribbon", "dahl", "cross_coupled"});
+  ContactLawParams params;
+  const std::string ribbon =
+      table.Choice("ribbon", {"bilinear", "dahl", "cross_coupled"}, "bilinear");
+  params.ribbon = ribbon == "dahl"            ? ContactLawRibbon::kDahl
+                  : ribbon == "cross_coupled" ? ContactLawRibbon::kCrossCoupled
+                                              : ContactLawRibbon::kBilinear;
+  const bool bilinear = params.ribbon == ContactLawRibbon::kBilinear;
+  params.bearing_stiffness_N_per_m = table.Number("bearing_stiffness_N_per_m", Positive());
+  params.bearing_damping_N_s_per_m = table.Number("bearing_damping_N_s_per_m", NonNegative());
+  if (bilinear) {
+    params.ribbon_stiffness_N_per_m = table.Number("ribbon_stiffness_N_per_m", Positive());
+    params.ribbon_damping_N_s_per_m = table.Number("ribbon_damping_N_s_per_m", NonNegative());
+    params.ribbon_crushing_m = table.Number("ribbon_crushing_m", NonNegative());
+  } else {
+    // The ribbon law replaces keq and urd (and, cross-coupled, ceq): given, they are checked,
+    // absent, they are not logged as keys a fit could move.
+    params.ribbon_stiffness_N_per_m =
+        table.OptionalNumber("ribbon_stiffness_N_per_m", Positive()).value_or(0.0);
+    params.ribbon_crushing_m =
+        table.OptionalNumber("ribbon_crushing_m", NonNegative()).value_or(0.0);
+    if (params.ribbon == ContactLawRibbon::kDahl) {
+      const NumberRule positive_damping{
+          .lower = 0.0,
+          .lower_inclusive = false,
+          .what =
+              "a positive number (the Dahl ribbon's race is massless: this damping beside "
+              "the Dahl element sets its deflection rate)"};
+      params.ribbon_damping_N_s_per_m = table.Number("ribbon_damping_N_s_per_m", positive_damping);
+    } else {
+      params.ribbon_damping_N_s_per_m =
+          table.OptionalNumber("ribbon_damping_N_s_per_m", NonNegative()).value_or(0.0);
+    }
+  }
+  const auto ribbon_table = [&](std::string_view key) {
+    return ribbon == key ? std::optional<TableReader>(table.Table(key)) : table.OptionalTable(key);
+  };
+  if (const auto dahl = ribbon_table("dahl")) params.dahl = ReadDahl(*dahl);
+  if (const auto cc = ribbon_table("cross_coupled")) {
+    params.cross_coupled = ReadCrossCoupled(*cc);
+    if (params.ribbon == ContactLawRibbon::kCrossCoupled &&
+        !(params.cross_coupled.damping_N_s_per_m > 0.0)) {
+      cc->Fail("damping_N_s_per_m",
+               "a positive number (N s/m) (in series with the contact the ribbon's race is "
+               "massless: its damping sets the deflection rate)");
+    }
+  }
+  return params;
+}
+
+// The ribbon the switch selects must be there; the other one, if given, is checked too, so
+// that `--set tdb.X.four_dof.ribbon=...` can switch between two complete descriptions.
+FourDofParams ReadFourDof(const TableReader& tdb, const GravityParams& gravity) {
+  const TableReader table = tdb.Table("four_dof");
+  table.AllowOnly({"inner_race_mass_kg", "outer_race_mass_kg", "ribbon_clearance_m", "bearing_law",
+                   "ribbon", "inner_contact", "housing_contact", "bearing", "kelvin_voigt", "dahl",
+                   "cross_coupled"});
+  FourDofParams params;
+  params.inner_race_mass_kg = table.Number("inner_race_mass_kg", Positive());
+  params.outer_race_mass_kg = table.Number("outer_race_mass_kg", Positive());
+  params.ribbon_clearance_m = table.Number("ribbon_clearance_m", NonNegative());
+  params.gravity_y_m_s2 = gravity.enabled ? -gravity.acceleration_m_s2 : 0.0;
+  params.inner_contact = ReadHuntCrossley(table, "inner_contact");
+  params.housing_contact = ReadHousingContact(table, &params.housing_contact_enabled);
+  params.bearing = ReadBallBearing(table);
+  const std::string bearing_law =
+      table.Choice("bearing_law", {"hertz_linearised", "hertz", "quadratic"});
+  params.bearing.law = bearing_law == "hertz"       ? BearingLaw::kHertz
+                       : bearing_law == "quadratic" ? BearingLaw::kQuadratic
+                                                    : BearingLaw::kHertzLinearised;
+  const std::string ribbon = table.Choice("ribbon", {"kelvin_voigt", "dahl", "cross_coupled"});
+  params.ribbon = ribbon == "dahl"            ? RibbonLaw::kDahl
+                  : ribbon == "cross_coupled" ? RibbonLaw::kCrossCoupled
+                                              : RibbonLaw::kKelvinVoigt;
+  const auto ribbon_table = [&](std::string_view key) {
+    return ribbon == key ? std::optional<TableReader>(table.Table(key)) : table.OptionalTable(key);
+  };
+  if (const auto kv = ribbon_table("kelvin_voigt")) params.kelvin_voigt = ReadKelvinVoigt(*kv);
+  if (const auto dahl = ribbon_table("dahl")) params.dahl = ReadDahl(*dahl);
+  if (const auto cc = ribbon_table("cross_coupled")) params.cross_coupled = ReadCrossCoupled(*cc);
+  return params;
+}
+
+FrictionParams ReadFriction(const TableReader& tdb) {
+  FrictionParams params;
+  const auto table = tdb.OptionalTable("friction");
+  if (!table) return params;
+  table->AllowOnly({"law", "coefficient", "regularisation_s_per_m", "whirl_damping_N_s_per_m"});
+  const std::string_view default_law =
+      params.law == FrictionLaw::kNone ? "none" : "regularised_coulomb";
+  params.law = table->Choice("law", {"regularised_coulomb", "none"}, default_law) == "none"
+                   ? FrictionLaw::kNone
+                   : FrictionLaw::kRegularisedCoulomb;
+  params.coefficient = table->Number("coefficient", NonNegative(), params.coefficient);
+  params.regularisation_s_per_m =
+      table->Number("regularisation_s_per_m", Positive(), params.regularisation_s_per_m);
+  params.whirl_damping_N_s_per_m =
+      table->Number("whirl_damping_N_s_per_m", NonNegative(), params.whirl_damping_N_s_per_m);
+  return params;
+}
+
+TdbSpinParams ReadSpin(const TableReader& tdb) {
+  TdbSpinParams params;
+  const auto table = tdb.OptionalTable("spin");
+  if (!table) return params;
+  table->AllowOnly({"enabled", "inertia_kg_m2", "rotational_damping_N_m_s", "palmgren_f1",
+                    "pitch_diameter_m", "drag_torque_N_m", "drag_regularisation_s_per_rad"});
+  params.enabled = table->Bool("enabled", params.enabled);
+  params.inertia_kg_m2 = table->Number("inertia_kg_m2", Positive(), params.inertia_kg_m2);
+  params.rotational_damping_N_m_s =
+      table->Number("rotational_damping_N_m_s", NonNegative(), params.rotational_damping_N_m_s);
+  params.palmgren_f1 = table->Number("palmgren_f1", NonNegative(), params.palmgren_f1);
+  params.pitch_diameter_m =
+      table->Number("pitch_diameter_m", NonNegative(), params.pitch_diameter_m);
+  params.drag_torque_N_m = table->Number("drag_torque_N_m", NonNegative(), params.drag_torque_N_m);
+  // Absent: the drag shares the friction's regularisation, as before the key existed.
+  params.drag_regularisation_s_per_rad = table->Number("drag_regularisation_s_per_rad", Positive(),
+                                                       params.drag_regularisation_s_per_rad);
+  return params;
+}
+
+MisalignmentParams ReadMisalignment(const TableReader& tdb) {
+  MisalignmentParams params;
+  const auto table = tdb.OptionalTable("misalignment");
+  if (!table) return params;
+  table->AllowOnly({"enabled", "x_m", "y_m"});
+  params.enabled = table->Bool("enabled", params.enabled);
+  params.x_m = table->Number("x_m", AnyNumber(), params.x_m);
+  params.y_m = table->Number("y_m", AnyNumber(), params.y_m);
+  return params;
+}
+
+TdbParams ReadTdb(const std::string& name, const TableReader& table, const AxialRange& position,
+                  const GravityParams& gravity) {
+  table.AllowOnly({"position_m", "journal_radius_m", "clearance_m", "inner_race_radius_m", "model",
+                   "contact_law", "friction", "spin", "misalignment", "four_dof",
+                   "ball_bearing_tdb", "catcher_bearing"});
+  TdbParams tdb;
+  tdb.name = name;
+  tdb.position_m = ReadAxialPosition(table, position);
+  tdb.journal_radius_m = table.Number("journal_radius_m", Positive());
+  tdb.clearance_m = table.Number("clearance_m", Positive());
+  // Rir of the slip and race torque. The race bore surrounds the journal, so it cannot be smaller
+  // than the journal radius. Absent: 0 in the parameters, derived where it is used (journal radius
+  // + clearance, InnerRaceRadius), so that it follows a clearance changed later, as it did before
+  // the key; the registry lists the value derived now as a default (declared = false), which a
+  // reading with another clearance derives again.
+  const NumberRule race_radius =
+      AtLeast(tdb.journal_radius_m,
+              "a radius at least journal_radius_m (the race bore surrounds the journal)");
+  tdb.inner_race_radius_m =
+      table.Number("inner_race_radius_m", race_radius, tdb.journal_radius_m + tdb.clearance_m);
+  if (!table.Has("inner_race_radius_m")) tdb.inner_race_radius_m = 0.0;
+  // The selected model's table is required; the other, if given, is checked too, so that
+  // `--set tdb.X.model=...` can switch between two complete descriptions.
+  const std::string model = table.Choice(
+      "model", {"contact_law", "four_dof", "ball_bearing_tdb", "catcher_bearing"}, "contact_law");
+  tdb.model = model == "four_dof" ? TdbModelKind::kFourDof : TdbModelKind::kContactLaw;
+  if (model == "ball_bearing_tdb") tdb.model = TdbModelKind::kBallBearing;
+  if (model == "catcher_bearing") tdb.model = TdbModelKind::kCatcherBearing;
+  if (tdb.model == TdbModelKind::kContactLaw || table.Has("contact_law")) {
+    tdb.contact_law = ReadContactLaw(table);
+  }
+  if (tdb.model == TdbModelKind::kFourDof || table.Has("four_dof")) {
+    tdb.four_dof = ReadFourDof(table, gravity);
+  }
+  if (tdb.model == TdbModelKind::kBallBearing || table.Has("ball_bearing_tdb")) {
+    tdb.ball_bearing = ReadBallBearingTdb(table, gravity);
+  }
+  if (tdb.model == TdbModelKind::kCatcherBearing || table.Has("catcher_bearing")) {
+    tdb.catcher = ReadCatcherBearing(table, gravity);
+  }
+  if (tdb.model == TdbModelKind::kCatcherBearing) {
+    table.Reject("spin",
+                 "no [spin] table with model = \"catcher_bearing\" (its races' inertias "
+                 "and friction moments are in [catcher_bearing])");
+  }
+  tdb.friction = ReadFriction(table);
+  tdb.spin = ReadSpin(table);
+  tdb.misalignment = ReadMisalignment(table);
+  return tdb;
+}
+
+}  // namespace
+
+std::vector<TdbParams> ReadTdbs(const TableReader& root, const AxialRange& position) {
+  const auto tables = root.NamedTables("tdb");
+  root.CheckCount("tdb", tables.size(), kMaxTdbs, "touchdown bearings");
+  // The races of 4-DOF TDBs carry their weight.
+  const GravityParams gravity = ReadGravity(root);
+  std::vector<TdbParams> tdbs;
+  for (const auto& [name, table] : tables) tdbs.push_back(ReadTdb(name, table, position, gravity));
+  return tdbs;
+}
+
+}  // namespace ambdrop::config_detail

@@ -1,0 +1,356 @@
+#include "io/lcm/lcm_transport.hpp"
+
+#include <pthread.h>
+#include <sched.h>
+#include <unistd.h>
+
+#include <ambdrop_lcm/amb_currents_t.hpp>
+#include <ambdrop_lcm/emulator_state_t.hpp>
+#include <ambdrop_lcm/sensor_readings_t.hpp>
+#include <ambdrop_lcm/trigger_t.hpp>
+#include <chrono>
+#include <climits>
+#include <cmath>
+#include <cstring>
+#include <lcm/lcm-cpp.hpp>
+#include <stdexcept>
+#include <utility>
+
+namespace ambdrop {
+
+// The wire arrays are sized by literals in the .lcm files (lcm-gen takes no named constants):
+// they must match the compile-time capacities.
+static_assert(sizeof(ambdrop_lcm::amb_currents_t::current_x_A) / sizeof(double) == kMaxAmbs);
+static_assert(sizeof(ambdrop_lcm::sensor_readings_t::x_m) / sizeof(double) == kMaxSensors);
+static_assert(sizeof(ambdrop_lcm::emulator_state_t::q) / sizeof(double) == kMaxModes);
+static_assert(sizeof(ambdrop_lcm::emulator_state_t::powered_axes) == kMaxAmbs);
+static_assert(sizeof(ambdrop_lcm::emulator_state_t::tdb_normal_force_N) / sizeof(double) ==
+              kMaxTdbs);
+static_assert(ambdrop_lcm::trigger_t::AXIS_X == kAxisX &&
+              ambdrop_lcm::trigger_t::AXIS_Y == kAxisY &&
+              ambdrop_lcm::trigger_t::AXIS_AXIAL == kAxisAxial &&
+              ambdrop_lcm::trigger_t::ALL_AXES == kAllAxes &&
+              ambdrop_lcm::trigger_t::ALL_AMBS == kAllAmbs);
+
+struct LcmEndpoint::Callbacks {
+  static void Currents(const lcm_recv_buf_t* rbuf, const char* /*channel*/, void* user) {
+    static_cast<LcmEndpoint*>(user)->HandleCurrents(rbuf->data, rbuf->data_size);
+  }
+  static void Trigger(const lcm_recv_buf_t* rbuf, const char* /*channel*/, void* user) {
+    static_cast<LcmEndpoint*>(user)->HandleTrigger(rbuf->data, rbuf->data_size);
+  }
+};
+
+namespace {
+
+/// Decodes a whole payload: a short, long or foreign-type payload is a failure. lcm-cpp's typed
+/// handlers would print to stderr and drop silently; we count instead.
+template <typename Message>
+bool DecodeExactly(const void* data, std::size_t size, Message* msg) {
+  if (size > static_cast<std::size_t>(INT_MAX)) return false;
+  const int length = static_cast<int>(size);
+  return msg->decode(data, 0, length) == length;
+}
+
+/// Encodes into the preallocated buffer (no per-message heap use) and publishes raw bytes.
+template <typename Message>
+bool EncodeAndPublish(const Message& msg, const std::string& channel, lcm::LCM* lcm,
+                      std::vector<std::uint8_t>* buffer) {
+  const int size = static_cast<int>(buffer->size());
+  if (msg.encode(buffer->data(), 0, size) != size) return false;
+  return lcm->publish(channel, buffer->data(), static_cast<unsigned int>(size)) == 0;
+}
+
+void NameThread(std::thread* thread, const char* name) {
+  // Best effort: names show in top/ps/gdb and help when pinning threads on a HIL host.
+  pthread_setname_np(thread->native_handle(), name);
+}
+
+}  // namespace
+
+LcmEndpoint::LcmEndpoint(LcmEndpointOptions options) : options_(std::move(options)) {
+  const std::string* channels[] = {&options_.currents_channel, &options_.trigger_channel,
+                                   &options_.sensors_channel, &options_.state_channel};
+  for (int i = 0; i < 4; ++i) {
+    if (channels[i]->empty()) throw std::invalid_argument("LCM channel names must not be empty");
+    // A shared name would loop our own output back in as (malformed) input.
+    for (int j = 0; j < i; ++j) {
+      if (*channels[i] == *channels[j]) {
+        throw std::invalid_argument("LCM channel '" + *channels[i] + "' is used twice");
+      }
+    }
+  }
+  if (options_.receive_timeout.count() <= 0) {
+    throw std::invalid_argument("LCM receive_timeout must be > 0 ms");
+  }
+
+  lcm_ = std::make_unique<lcm::LCM>(options_.url);
+  if (!lcm_->good()) {
+    // udpm's creation self-test fails when multicast has no route (e.g. loopback only).
+    throw std::runtime_error("LCM: cannot open URL '" + options_.url +
+                             "': bad URL, or udpm multicast is not routable (on one host: "
+                             "ip route add 239.0.0.0/8 dev lo)");
+  }
+  lcm_t* c_lcm = lcm_->getUnderlyingLCM();
+  // Raw C subscriptions: we decode ourselves into stack objects (fixed-size types, no heap) and
+  // count failures.
+  if (lcm_subscribe(c_lcm, options_.currents_channel.c_str(), &Callbacks::Currents, this) ==
+          nullptr ||
+      lcm_subscribe(c_lcm, options_.trigger_channel.c_str(), &Callbacks::Trigger, this) ==
+          nullptr) {
+    throw std::runtime_error("LCM: cannot subscribe");
+  }
+
+  // Encoded sizes are constant for fixed-size types: size the buffers once.
+  sensors_buffer_.resize(
+      static_cast<std::size_t>(ambdrop_lcm::sensor_readings_t{}.getEncodedSize()));
+  state_buffer_.resize(static_cast<std::size_t>(ambdrop_lcm::emulator_state_t{}.getEncodedSize()));
+}
+
+LcmEndpoint::~LcmEndpoint() {
+  Stop();
+}
+
+void LcmEndpoint::Start() {
+  if (running_) throw std::logic_error("LcmEndpoint::Start: already started");
+  stop_.store(false, std::memory_order_release);
+  receive_thread_ = std::thread([this] { ReceiveLoop(); });
+  try {
+    publish_thread_ = std::thread([this] { PublishLoop(); });
+  } catch (...) {
+    stop_.store(true, std::memory_order_release);
+    receive_thread_.join();
+    throw;
+  }
+  NameThread(&receive_thread_, "ambdrop-lcm-rx");
+  NameThread(&publish_thread_, "ambdrop-lcm-tx");
+  running_ = true;
+}
+
+std::string LcmEndpoint::RaiseIoThreads(int priority, int loop_cpu) {
+  if (!running_) return "the endpoint is not started";
+  // Off the loop's CPU: a saturated loop there would starve them, and the kernel's RT
+  // throttling, counted per CPU, would stop them with it.
+  cpu_set_t others;
+  CPU_ZERO(&others);
+  const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+  for (int c = 0; c < cpus && c < CPU_SETSIZE; ++c) {
+    if (c != loop_cpu) CPU_SET(c, &others);
+  }
+  const bool move = loop_cpu >= 0 && CPU_COUNT(&others) > 0;
+  sched_param param{};
+  param.sched_priority = priority;
+  for (std::thread* t : {&receive_thread_, &publish_thread_}) {
+    if (move) {
+      const int error = pthread_setaffinity_np(t->native_handle(), sizeof(others), &others);
+      if (error != 0)
+        return std::string("moving off CPU ") + std::to_string(loop_cpu) +
+               " refused: " + std::strerror(error);
+    }
+    const int error = pthread_setschedparam(t->native_handle(), SCHED_FIFO, &param);
+    if (error != 0) return std::string("SCHED_FIFO refused: ") + std::strerror(error);
+  }
+  return {};
+}
+
+void LcmEndpoint::Stop() noexcept {
+  if (!running_) return;
+  stop_.store(true, std::memory_order_release);
+  publish_signal_.fetch_add(1, std::memory_order_release);
+  publish_signal_.notify_all();
+  publish_thread_.join();
+  receive_thread_.join();
+  running_ = false;
+}
+
+LcmEndpointCounters LcmEndpoint::counters() const noexcept {
+  constexpr auto kRelaxed = std::memory_order_relaxed;
+  LcmEndpointCounters c;
+  c.currents_received = currents_received_.load(kRelaxed);
+  c.triggers_received = triggers_received_.load(kRelaxed);
+  c.malformed_decode = malformed_decode_.load(kRelaxed);
+  c.malformed_range = malformed_range_.load(kRelaxed);
+  c.malformed_non_finite = malformed_non_finite_.load(kRelaxed);
+  c.malformed_current_bound = malformed_current_bound_.load(kRelaxed);
+  c.currents_sequence_jumps = currents_sequence_jumps_.load(kRelaxed);
+  c.currents_ring_full = currents_.dropped();
+  c.triggers_ring_full = triggers_.dropped();
+  c.sensors_published = sensors_published_.load(kRelaxed);
+  c.states_published = states_published_.load(kRelaxed);
+  c.sensors_ring_full = sensors_.dropped();
+  c.states_ring_full = states_.dropped();
+  c.publish_rejected = publish_rejected_.load(kRelaxed);
+  c.publish_errors = publish_errors_.load(kRelaxed);
+  c.receive_errors = receive_errors_.load(kRelaxed);
+  return c;
+}
+
+// --- Receive thread ---------------------------------------------------------------------------
+
+void LcmEndpoint::ReceiveLoop() noexcept {
+  const int timeout_ms = static_cast<int>(options_.receive_timeout.count());
+  while (!stop_.load(std::memory_order_acquire)) {
+    if (lcm_->handleTimeout(timeout_ms) < 0) {
+      receive_errors_.fetch_add(1, std::memory_order_relaxed);
+      // Do not spin on a broken socket; keep trying, a transient error may clear.
+      std::this_thread::sleep_for(options_.receive_timeout);
+    }
+  }
+}
+
+void LcmEndpoint::HandleCurrents(const void* data, std::size_t size) noexcept {
+  ambdrop_lcm::amb_currents_t msg;
+  if (!DecodeExactly(data, size, &msg)) {
+    malformed_decode_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  if (msg.amb_count < 0 || msg.amb_count > kMaxAmbs) {
+    malformed_range_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  HilCurrents currents;
+  // Stamped as decoded: the record's arrival time of the currents (a run record written 0 here).
+  currents.receive_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                            std::chrono::steady_clock::now().time_since_epoch())
+                            .count();
+  currents.utime_us = msg.utime;
+  currents.sequence = msg.sequence;
+  currents.amb_count = msg.amb_count;
+  bool finite = true;
+  for (int i = 0; i < msg.amb_count; ++i) {
+    currents.current_A[i] = {msg.current_x_A[i], msg.current_y_A[i]};
+    finite = finite && std::isfinite(msg.current_x_A[i]) && std::isfinite(msg.current_y_A[i]);
+  }
+  currents.axial_valid = msg.axial_valid != 0;
+  if (currents.axial_valid) {
+    currents.axial_current_A = msg.axial_current_A;
+    finite = finite && std::isfinite(msg.axial_current_A);
+  }
+  // A NaN current would poison the state within one step: never let one through.
+  if (!finite) {
+    malformed_non_finite_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  for (int i = 0; i < msg.amb_count; ++i) {
+    const double bound = options_.current_bound_A[i];
+    if (std::abs(msg.current_x_A[i]) > bound || std::abs(msg.current_y_A[i]) > bound) {
+      malformed_current_bound_.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+  }
+
+  if (have_sequence_ && msg.sequence != last_sequence_ + 1) {
+    currents_sequence_jumps_.fetch_add(1, std::memory_order_relaxed);
+  }
+  have_sequence_ = true;
+  last_sequence_ = msg.sequence;
+  currents_received_.fetch_add(1, std::memory_order_relaxed);
+  currents_.TryPush(currents);  // full: dropped and counted by the ring
+}
+
+void LcmEndpoint::HandleTrigger(const void* data, std::size_t size) noexcept {
+  ambdrop_lcm::trigger_t msg;
+  if (!DecodeExactly(data, size, &msg)) {
+    malformed_decode_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  const auto amb_mask = static_cast<std::uint8_t>(msg.amb_mask);
+  const auto axis_mask = static_cast<std::uint8_t>(msg.axis_mask);
+  // A mask naming nothing, or a slot that does not exist, is a sender bug: acting on part of it
+  // would emulate a failure nobody asked for.
+  if (amb_mask == 0 || (amb_mask & ~kAllAmbs) != 0 || axis_mask == 0 ||
+      (axis_mask & ~kAllAxes) != 0) {
+    malformed_range_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  HilTrigger trigger;
+  trigger.utime_us = msg.utime;
+  trigger.sequence = msg.sequence;
+  trigger.power_on = msg.power_on != 0;
+  trigger.amb_mask = amb_mask;
+  trigger.axis_mask = axis_mask;
+  triggers_received_.fetch_add(1, std::memory_order_relaxed);
+  triggers_.TryPush(trigger);  // full: dropped and counted by the ring
+}
+
+// --- Publish thread ---------------------------------------------------------------------------
+
+void LcmEndpoint::PublishLoop() noexcept {
+  HilSensorReadings readings;
+  HilEmulatorState state;
+  while (true) {
+    // Read the signal before draining: a push after the drain bumps it and the wait returns.
+    const std::uint32_t seen = publish_signal_.load(std::memory_order_acquire);
+    const bool stopping = stop_.load(std::memory_order_acquire);
+    while (sensors_.TryPop(&readings)) PublishSensors(readings);
+    while (states_.TryPop(&state)) PublishState(state);
+    if (stopping) return;  // everything pushed before Stop has been published
+    if (options_.publish_poll_period.count() > 0) {
+      std::this_thread::sleep_for(options_.publish_poll_period);
+    } else {
+      publish_signal_.wait(seen, std::memory_order_acquire);
+    }
+  }
+}
+
+void LcmEndpoint::PublishSensors(const HilSensorReadings& readings) noexcept {
+  if (readings.sensor_count < 0 || readings.sensor_count > kMaxSensors) {
+    publish_rejected_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  ambdrop_lcm::sensor_readings_t msg{};
+  msg.utime = readings.utime_us;
+  msg.step_index = readings.step_index;
+  msg.time_s = readings.time_s;
+  msg.sensor_count = static_cast<std::int8_t>(readings.sensor_count);
+  msg.counts_valid = readings.counts_valid ? 1 : 0;
+  // Entries beyond the count go out as zero, as the message definition promises.
+  for (int i = 0; i < readings.sensor_count; ++i) {
+    msg.x_m[i] = readings.position_m[i][0];
+    msg.y_m[i] = readings.position_m[i][1];
+    if (readings.counts_valid) {
+      msg.x_counts[i] = readings.counts[i][0];
+      msg.y_counts[i] = readings.counts[i][1];
+    }
+  }
+  const bool ok = EncodeAndPublish(msg, options_.sensors_channel, lcm_.get(), &sensors_buffer_);
+  (ok ? sensors_published_ : publish_errors_).fetch_add(1, std::memory_order_relaxed);
+}
+
+void LcmEndpoint::PublishState(const HilEmulatorState& state) noexcept {
+  if (state.mode_count < 0 || state.mode_count > kMaxModes || state.tdb_count < 0 ||
+      state.tdb_count > kMaxTdbs) {
+    publish_rejected_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  ambdrop_lcm::emulator_state_t msg{};
+  msg.utime = state.utime_us;
+  msg.step_index = state.step_index;
+  msg.time_s = state.time_s;
+  msg.power_on = state.power_on ? 1 : 0;
+  for (int i = 0; i < kMaxAmbs; ++i) {
+    msg.powered_axes[i] = static_cast<std::int8_t>(state.powered_axes[i] & kAllAxes);
+  }
+  msg.spin_speed_rad_s = state.spin_speed_rad_s;
+  msg.spin_angle_rad = state.spin_angle_rad;
+  msg.mode_count = static_cast<std::int8_t>(state.mode_count);
+  for (int i = 0; i < state.mode_count; ++i) {
+    msg.q[i] = state.q[i];
+    msg.q_dot[i] = state.q_dot[i];
+  }
+  msg.tdb_count = static_cast<std::int8_t>(state.tdb_count);
+  for (int i = 0; i < state.tdb_count; ++i) {
+    const HilTdbState& tdb = state.tdb[i];
+    msg.tdb_normal_force_N[i] = tdb.normal_force_N;
+    msg.tdb_tangential_force_N[i] = tdb.tangential_force_N;
+    msg.tdb_penetration_m[i] = tdb.penetration_m;
+    msg.tdb_race_speed_rad_s[i] = tdb.race_speed_rad_s;
+    msg.tdb_journal_x_m[i] = tdb.journal_xy_m[0];
+    msg.tdb_journal_y_m[i] = tdb.journal_xy_m[1];
+  }
+  msg.fault_count = state.fault_count;
+  const bool ok = EncodeAndPublish(msg, options_.state_channel, lcm_.get(), &state_buffer_);
+  (ok ? states_published_ : publish_errors_).fetch_add(1, std::memory_order_relaxed);
+}
+
+}  // namespace ambdrop

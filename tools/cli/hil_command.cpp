@@ -1,0 +1,462 @@
+#include "tools/cli/hil_command.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <exception>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <thread>
+
+#include "controller_if/boundary/scenario_faults.hpp"
+#include "controller_if/loop/hil_session.hpp"
+#include "controller_if/loop/periodic_loop.hpp"
+#include "controller_if/loop/rt_clock.hpp"
+#include "controller_if/loop/rt_system.hpp"
+#include "io/config/config_loader.hpp"
+#include "io/files/json_writer.hpp"
+#include "io/files/timeseries_csv.hpp"
+#include "tools/cli/exit_codes.hpp"
+#include "tools/cli/hil_checks.hpp"
+#include "tools/cli/junit_report.hpp"
+#include "tools/cli/long_run_note.hpp"
+#include "tools/cli/plant_description.hpp"
+#include "tools/cli/scenario_outcome.hpp"
+#include "tools/cli/settled_start_refusal.hpp"
+#include "tools/hil/hil_links.hpp"
+#include "tools/record/run_record_writer.hpp"
+#include "tools/validation/run_summary.hpp"
+#include "tools/validation/tdb_summary_json.hpp"
+
+namespace ambdrop {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::atomic<bool> g_stop{false};
+extern "C" void OnSignal(int) {
+  g_stop.store(true);
+}
+
+const char* StopName(HilStop stop) {
+  switch (stop) {
+    case HilStop::kRunning:
+      return "interrupted";
+    case HilStop::kDuration:
+      return "ok";
+    case HilStop::kWatchdog:
+      return "watchdog_stop";
+    case HilStop::kDiverged:
+      return "diverged";
+  }
+  return "unknown";
+}
+
+void WriteStats(JsonWriter& json, const char* key, const TimingStats& stats) {
+  json.Key(key).BeginObject();
+  json.Key("count").Integer(stats.count());
+  json.Key("p50_us").Number(static_cast<double>(stats.Quantile(0.5)) / 1e3);
+  json.Key("p99_us").Number(static_cast<double>(stats.Quantile(0.99)) / 1e3);
+  json.Key("p999_us").Number(static_cast<double>(stats.Quantile(0.999)) / 1e3);
+  json.Key("max_us").Number(static_cast<double>(stats.max_ns()) / 1e3);
+  json.EndObject();
+}
+
+}  // namespace
+
+int RunHilCommand(const HilCommandOptions& given) {
+  // A scenario is a rig config with a [scenario] table: it stands where CONFIG would.
+  HilCommandOptions options = given;
+  if (!options.scenario_path.empty()) options.config_path = options.scenario_path;
+  const auto wall_start = std::chrono::steady_clock::now();
+  LoadedConfig config;
+  std::optional<Model> model;
+  try {
+    config = LoadConfig(options.config_path, options.overrides);
+    if (!options.scenario_path.empty() && !config.scenario) {
+      throw ConfigError(options.scenario_path +
+                        ": not a scenario: it has no [scenario] table (see configs/scenarios/)");
+    }
+    model.emplace(BuildModel(config.params));
+    // A config error (the controller period in whole steps), not one of the links' below.
+    ControllerSubsteps(*model);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitConfig;
+  }
+
+  if (!options.describe_path.empty()) {
+    try {
+      WriteTextFile(options.describe_path, PlantDescriptionJson(*model, options.config_path));
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: --describe: {}\n", e.what());
+      return kExitError;
+    }
+    return kExitOk;
+  }
+  if (RefusesSettledStart(*model, options.config_path, "hil")) return kExitConfig;
+  // The controller link and trigger sources (tools/hil/hil_links.hpp).
+  HilLinks links;
+  std::int64_t substeps = 0;
+  try {
+    substeps = ControllerSubsteps(*model);
+    links = MakeHilLinks(config, *model, options.controller, options.trigger);
+  } catch (const ConfigError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitConfig;
+  } catch (const CanBusError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitError;
+  } catch (const GpioError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitError;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitUsage;
+  }
+  HilOptions hil;
+  hil.watchdog_timeout_s = options.watchdog_timeout_s;
+  try {
+    hil.silence_action = ParseSilenceAction(options.silence_action);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: --silence: {}\n", e.what());
+    return kExitUsage;
+  }
+  // The scenario's faults sit between the emulator and whatever controller runs, and its power
+  // events join the trigger sources; its watchdog settings are part of what it tests.
+  const ScenarioParams* scenario = config.scenario ? &*config.scenario : nullptr;
+  std::optional<ScenarioLink> scenario_link;
+  std::optional<ScenarioTrigger> scenario_trigger;
+  std::optional<ScenarioOutcome> outcome;
+  ControllerLink* link = links.link.get();
+  std::vector<TriggerSource*> triggers = links.triggers;
+  if (scenario != nullptr) {
+    scenario_link.emplace(links.link.get(), *model, *scenario);
+    scenario_trigger.emplace(*model, *scenario);
+    outcome.emplace(*model);
+    link = &*scenario_link;
+    triggers.push_back(&*scenario_trigger);
+    hil.watchdog_timeout_s = scenario->watchdog_timeout_s;
+    try {
+      hil.silence_action = ParseSilenceAction(scenario->silence_action);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: {}: scenario.silence_action: {}\n", options.scenario_path,
+                 e.what());
+      return kExitConfig;
+    }
+  }
+
+  NoteLongRun(*model, !options.virtual_clock);
+
+  const fs::path out_dir(options.out_dir);
+  fs::create_directories(out_dir);
+  WriteTextFile(out_dir / "effective_config.toml", config.effective_toml);
+  TimeseriesCsvWriter csv(out_dir / "timeseries.csv", *model);
+  RunSummary summary(model->params);
+  HilChecks checks;
+
+  std::unique_ptr<RunRecordWriter> recorder;
+  if (!options.record_path.empty()) {
+    RecordHeaderInfo header;
+    header.source = "hil";
+    header.controller = options.controller;
+    header.config_toml = config.effective_toml;
+    header.sensor_every_steps = ControllerSubsteps(*model);
+    header.output_every_steps = std::max<std::int64_t>(
+        1,
+        std::llround(model->params.simulation.output_interval_s / model->params.simulation.step_s));
+    header.total_steps = model->total_steps;
+    RecordWriterOptions record_options;
+    // Live: wall-clock stamps, and a full ring drops (counted in the footer) rather than
+    // stalling the loop. Virtual clock: simulated time, and the run waits for the writer.
+    record_options.wall_clock = !options.virtual_clock;
+    record_options.wait_when_full = options.virtual_clock;
+    try {
+      recorder =
+          std::make_unique<RunRecordWriter>(options.record_path, *model, header, record_options);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: --record: {}\n", e.what());
+      return kExitError;
+    }
+    hil.recorder = recorder.get();
+  }
+
+  auto outputs = std::make_unique<HilSession::OutputRing>();
+  HilSession session(*model, link, triggers, hil, outputs.get());
+
+  // The writer drains observations off the real-time thread. A write error is held (an
+  // exception here would terminate the process) and the ring still drained, so the loop runs on.
+  std::atomic<bool> loop_done{false};
+  std::string output_error;  // the writer's until it is joined
+  std::thread writer([&] {
+    Observation o;
+    for (;;) {
+      bool any = false;
+      while (outputs->TryPop(&o)) {
+        summary.Add(o);
+        checks.Add(o);
+        if (outcome) outcome->Add(o);
+        any = true;
+        if (!output_error.empty()) continue;
+        try {
+          csv.Write(o);
+        } catch (const std::exception& e) {
+          output_error = e.what();
+        }
+      }
+      if (!any) {
+        if (loop_done.load()) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      }
+    }
+  });
+
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  LoopResult result;
+  std::optional<PeriodicLoop> loop;
+  RtGrant grant;
+  // Real-time settings: the config's [realtime] table, the command line on top. A monotonic run
+  // always asks for 1 ns timer slack (the default 50 us slack alone would make every wake-up
+  // late by most of a 20 kHz period) and mlockall; refusals are warnings unless enforced.
+  RtRequest rt_request;
+  rt_request.priority = options.rt_priority_given ? options.rt_priority : config.realtime.priority;
+  rt_request.cpu = options.cpu_given ? options.cpu : config.realtime.cpu;
+  rt_request.lock_memory = true;
+  rt_request.enforce = options.enforce_rt || config.realtime.enforce;
+  rt_request.timer_slack_ns = 1;
+  const std::int64_t spin_ns = options.spin_us >= 0.0 ? std::llround(options.spin_us * 1e3)
+                                                      : std::llround(config.realtime.spin_s * 1e9);
+  const std::int64_t period_ns = std::llround(substeps * model->params.simulation.step_s * 1e9);
+  std::string throttling_warning;  // advice, not a refusal: never an error
+  std::int64_t lockstep_timeouts = 0;
+  std::thread rt([&] {
+    try {
+      if (!options.virtual_clock) {
+        LinuxRtSystem system;
+        grant = RequestRealtime(system, rt_request);
+        if (options.lcm_io_fifo && grant.fifo && links.lcm) {
+          // Just below the loop: the LCM threads carry its sensor samples and the answers.
+          const std::string refused = links.lcm->RaiseIoThreads(std::max(1, grant.priority - 1),
+                                                                grant.pinned ? grant.cpu : -1);
+          if (!refused.empty()) grant.warnings.push_back("LCM I/O threads: " + refused);
+        }
+        const auto throttling = ReadRtThrottling();
+        if (grant.fifo && throttling) {
+          throttling_warning = RtThrottlingWarning(spin_ns, period_ns, *throttling);
+        }
+      }
+    } catch (const std::exception& e) {
+      grant.warnings.push_back(std::string("fatal: ") + e.what());
+      g_stop.store(true);
+    }
+    MonotonicClock monotonic(spin_ns);
+    VirtualClock virtual_clock;
+    Clock* clock = options.virtual_clock ? static_cast<Clock*>(&virtual_clock) : &monotonic;
+    loop.emplace(clock, period_ns);
+    session.Start(clock->Now());
+    const auto lockstep_timeout =
+        std::chrono::nanoseconds(std::llround(options.lockstep_timeout_s * 1e9));
+    if (options.lockstep && !link->AwaitAnswer(lockstep_timeout)) ++lockstep_timeouts;
+    LoopRunOptions run;
+    run.stop = &g_stop;
+    // Periods the loop skipped after an overrun still advance the physics (HilSession::Period),
+    // so simulated time keeps up with wall time.
+    result = loop->Run(
+        [&](const LoopTick& tick) {
+          const bool more = session.Period(tick.wake_ns, tick.missed_before);
+          if (more && options.lockstep && !link->AwaitAnswer(lockstep_timeout)) {
+            ++lockstep_timeouts;
+          }
+          return more;
+        },
+        run);
+  });
+  rt.join();
+  links.Stop();
+  loop_done.store(true);
+  writer.join();
+  try {
+    csv.Close();
+  } catch (const std::exception& e) {
+    if (output_error.empty()) output_error = e.what();
+  }
+  if (recorder) {
+    try {
+      recorder->Finish(StopName(session.stop()), session.state().step_index);
+    } catch (const std::exception& e) {
+      if (output_error.empty()) output_error = std::string("--record: ") + e.what();
+    }
+  }
+
+  for (const std::string& w : grant.warnings) fmt::print(stderr, "warning: {}\n", w);
+  if (!throttling_warning.empty()) fmt::print(stderr, "warning: {}\n", throttling_warning);
+  if (rt_request.enforce && !grant.complete()) return kExitError;
+
+  JsonWriter json;
+  json.BeginObject();
+  json.Key("config").String(options.config_path);
+  // A run whose outputs failed is not ok, even if the loop was.
+  // Controller messages refused (not decodable, out of range, a current not finite or beyond
+  // its bound) make a run not ok: the loop went on with the last good currents, not with what
+  // the controller sent, so this is not the run that was asked for. They do not stop it (the
+  // watchdog catches a controller that sends nothing usable); the "lcm" block counts each kind.
+  const std::uint64_t rejected = links.RejectedControllerMessages();
+  const HilCounters& counters = session.counters();
+  std::optional<double> first_power_event_s;
+  if (counters.first_power_event_step >= 0) {
+    first_power_event_s =
+        static_cast<double>(counters.first_power_event_step) * model->params.simulation.step_s;
+  }
+  const std::string check_failures = checks.Failures(
+      first_power_event_s, counters.currents_received, options.controller != "internal");
+  // The scenario's expectations, judged on the run's own stop (a scenario may expect the
+  // watchdog to stop it).
+  std::vector<ScenarioOutcome::Check> expectations;
+  if (outcome)
+    expectations = outcome->Evaluate(scenario->expect, StopName(session.stop()), session);
+  const bool expectations_pass =
+      std::all_of(expectations.begin(), expectations.end(), [](const auto& c) { return c.pass; });
+  std::string status = StopName(session.stop());
+  if (session.stop() == HilStop::kDuration || !expectations.empty()) {
+    if (!output_error.empty()) {
+      status = "output_error";
+    } else if (rejected > 0) {
+      status = "controller_messages_rejected";
+    } else if (!check_failures.empty()) {
+      status = "check_failed";
+    } else if (!expectations_pass) {
+      status = "expectation_failed";
+    } else if (!expectations.empty()) {
+      status = "ok";  // the scenario expected how the run stopped
+    }
+  }
+  json.Key("status").String(status);
+  // The checks every HIL run is held to (tools/cli/hil_checks.hpp).
+  json.Key("checks").BeginObject();
+  json.Key("passed").Bool(check_failures.empty());
+  json.Key("failures").String(check_failures);
+  json.Key("first_contact_s");
+  if (checks.first_contact_s()) {
+    json.Number(*checks.first_contact_s());
+  } else {
+    json.Null();
+  }
+  json.Key("first_power_event_s");
+  if (first_power_event_s) {
+    json.Number(*first_power_event_s);
+  } else {
+    json.Null();
+  }
+  json.EndObject();
+  json.Key("output_error");
+  if (output_error.empty()) {
+    json.Null();
+  } else {
+    json.String(output_error);
+  }
+  json.Key("controller").String(options.controller);
+  json.Key("clock").String(options.virtual_clock ? "virtual" : "monotonic");
+  json.Key("sched_fifo").Bool(grant.fifo);
+  json.Key("periods").Integer(result.periods);
+  json.Key("overruns").Integer(result.overruns);
+  json.Key("missed_periods").Integer(result.missed_periods);
+  json.Key("catch_up_periods").Integer(session.counters().catch_up_periods);
+  json.Key("spin_us").Number(static_cast<double>(spin_ns) / 1e3);
+  json.Key("lockstep").Bool(options.lockstep);
+  json.Key("lockstep_timeouts").Integer(lockstep_timeouts);
+  json.Key("currents_received").Integer(session.counters().currents_received);
+  json.Key("sensor_samples_sent").Integer(session.counters().sensor_samples_sent);
+  json.Key("power_events").Integer(session.counters().power_events);
+  json.Key("watchdog_silence_episodes").Integer(session.watchdog().silence_episodes());
+  json.Key("observations_dropped").Integer(session.counters().observations_dropped);
+  links.WriteSummary(json);  // CAN and GPIO counters, when used
+  if (recorder) {
+    json.Key("record").BeginObject();
+    json.Key("path").String(options.record_path);
+    json.Key("events_written").Integer(recorder->events_written());
+    json.Key("events_dropped").Integer(recorder->dropped());
+    json.EndObject();
+  }
+  WriteStats(json, "wakeup_lateness", loop->lateness());
+  WriteStats(json, "compute_per_period", loop->compute());
+  if (scenario != nullptr) {
+    json.Key("scenario").BeginObject();
+    json.Key("path").String(options.scenario_path);
+    json.Key("description").String(scenario->description);
+    json.Key("relevitated").Bool(outcome->relevitated());
+    json.Key("currents_swallowed").Integer(scenario_link->messages_swallowed());
+    json.Key("pass").Bool(expectations_pass);
+    json.Key("checks");
+    WriteScenarioChecks(json, expectations);
+    json.EndObject();
+  }
+  WriteTdbSummaries(json, summary);
+  json.EndObject();
+  if (!options.junit_path.empty()) {
+    // One test case per check a CI job cares about: the run's own, then each expectation.
+    std::vector<JunitCase> cases;
+    cases.push_back({"hil", "run_completed", status != "interrupted" && status != "diverged",
+                     fmt::format("the run stopped: {}", StopName(session.stop()))});
+    cases.push_back({"hil", "outputs_written", output_error.empty(), output_error});
+    cases.push_back({"hil", "controller_messages_accepted", rejected == 0,
+                     fmt::format("{} controller messages refused", rejected)});
+    cases.push_back({"hil", "checks", check_failures.empty(), check_failures});
+    for (const ScenarioOutcome::Check& c : expectations) {
+      cases.push_back({"hil.scenario", c.name, c.pass,
+                       fmt::format("expected {}, got {}", c.expected, c.actual)});
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    try {
+      WriteJunit(options.junit_path,
+                 fmt::format("ambdrop hil {} ({})", options.config_path, options.controller), cases,
+                 seconds);
+    } catch (const std::exception& e) {
+      if (output_error.empty()) output_error = std::string("--junit: ") + e.what();
+    }
+  }
+  try {
+    WriteTextFile(out_dir / "summary.json", json.str());
+  } catch (const std::exception& e) {
+    if (output_error.empty()) output_error = e.what();
+  }
+  if (!options.quiet) {
+    fmt::print(
+        "{}: {}, {} periods, {} overruns; lateness p50/p99/max {:.1f}/{:.1f}/{:.1f} us; "
+        "compute p50/p99/max {:.1f}/{:.1f}/{:.1f} us\n",
+        model->params.name, StopName(session.stop()), result.periods, result.overruns,
+        static_cast<double>(loop->lateness().Quantile(0.5)) / 1e3,
+        static_cast<double>(loop->lateness().Quantile(0.99)) / 1e3,
+        static_cast<double>(loop->lateness().max_ns()) / 1e3,
+        static_cast<double>(loop->compute().Quantile(0.5)) / 1e3,
+        static_cast<double>(loop->compute().Quantile(0.99)) / 1e3,
+        static_cast<double>(loop->compute().max_ns()) / 1e3);
+  }
+  if (!output_error.empty()) fmt::print(stderr, "error: {}\n", output_error);
+  if (rejected > 0) {
+    fmt::print(stderr,
+               "error: {} controller messages were refused (malformed, or a current not finite "
+               "or beyond its bound): see the \"lcm\" block of {}\n",
+               rejected, (out_dir / "summary.json").string());
+  }
+  if (!check_failures.empty()) fmt::print(stderr, "error: check failed: {}\n", check_failures);
+  if (!options.quiet) {
+    for (const auto& c : expectations) {
+      fmt::print("  {:<4} {:<28} expected {:<14} got {}\n", c.pass ? "ok" : "FAIL", c.name,
+                 c.expected, c.actual);
+    }
+  }
+  if (!expectations_pass) {
+    fmt::print(stderr, "error: {}: an expected outcome did not happen\n", options.scenario_path);
+  }
+  if (session.stop() == HilStop::kDiverged) return kExitRunFailed;
+  if (!output_error.empty() || rejected > 0) return kExitError;
+  return check_failures.empty() && expectations_pass ? kExitOk : kExitExpectationFailed;
+}
+
+}  // namespace ambdrop

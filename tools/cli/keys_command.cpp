@@ -1,0 +1,69 @@
+#include "tools/cli/keys_command.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+
+#include "io/config/config_loader.hpp"
+#include "io/files/json_writer.hpp"
+#include "tools/cli/exit_codes.hpp"
+
+namespace ambdrop {
+
+int RunKeysCommand(const KeysOptions& options) {
+  LoadedConfig config;
+  try {
+    config = LoadConfig(options.config_path, options.overrides);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitConfig;
+  }
+  std::vector<const ConfigKey*> shown;
+  for (const ConfigKey& k : config.keys) {
+    if (options.key_class.empty() || options.key_class == KeyClassName(k.key_class)) {
+      shown.push_back(&k);
+    }
+  }
+  if (options.json) {
+    JsonWriter json;
+    json.BeginObject();
+    json.Key("config").String(options.config_path);
+    json.Key("keys").BeginArray();
+    for (const ConfigKey* k : shown) {
+      const FitRange range = DefaultFitRange(*k);
+      json.BeginObject();
+      json.Key("path").String(k->path);
+      json.Key("value").Number(k->value);
+      json.Key("unit").String(k->unit);
+      json.Key("class").String(KeyClassName(k->key_class));
+      json.Key("declared").Bool(k->declared);
+      json.Key("integer").Bool(k->integer);
+      json.Key("location").String(k->location);
+      json.Key("fit_range").BeginArray();
+      json.Number(range.lower);
+      json.Number(range.upper);
+      json.EndArray();
+      json.EndObject();
+    }
+    json.EndArray();
+    json.EndObject();
+    fmt::print("{}\n", json.str());
+    return kExitOk;
+  }
+  fmt::print("{:<52} {:>14} {:<9} {:<11} {:<27} {}\n", "key (--set path)", "value", "unit", "class",
+             "fit range", "declared at");
+  for (const ConfigKey* k : shown) {
+    const FitRange range = DefaultFitRange(*k);
+    // An integer key's range holds whole numbers only ("[0, 2] int").
+    const std::string fit =
+        k->key_class == KeyClass::kPhysical
+            ? fmt::format("[{:.4g}, {:.4g}]{}", range.lower, range.upper, k->integer ? " int" : "")
+            : std::string("-");
+    fmt::print("{:<52} {:>14.6g} {:<9} {:<11} {:<27} {}\n", k->path, k->value,
+               k->unit.empty() ? "-" : k->unit, KeyClassName(k->key_class), fit,
+               k->declared ? k->location : std::string("(default)"));
+  }
+  return kExitOk;
+}
+
+}  // namespace ambdrop
