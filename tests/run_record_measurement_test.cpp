@@ -14,6 +14,7 @@
 
 #include "controller_if/loop/hil_session.hpp"
 #include "controller_if/loop/offline_run.hpp"
+#include "controller_if/loop/step_driver.hpp"
 #include "rt_core/amb_force.hpp"
 #include "rt_core/model.hpp"
 #include "scratch_directory.hpp"
@@ -85,8 +86,7 @@ RecordedDrop RecordDrop(const fs::path& path) {
   h.controller = "internal";
   h.config_toml = d.config.effective_toml;
   h.sensor_every_steps = ControllerSubsteps(model);
-  h.output_every_steps =
-      std::llround(model.params.simulation.output_interval_s / model.params.simulation.step_s);
+  h.output_every_steps = OutputEverySteps(model);
   h.total_steps = model.total_steps;
   RunRecordWriter writer(path, model, h);
   d.live = std::make_unique<Tee>(&writer);

@@ -30,39 +30,34 @@ HilSession::HilSession(const Model& model, ControllerLink* link,
       link_(link),
       triggers_(std::move(triggers)),
       outputs_(outputs),
-      sim_(model),
-      sensors_(model.params.sensors,
-               static_cast<double>(ControllerSubsteps(model)) * model.params.simulation.step_s),
-      power_(model),
+      driver_(model, ControllerSubsteps(model)),
       watchdog_(std::llround(options.watchdog_timeout_s * 1e9), options.silence_action),
       substeps_(ControllerSubsteps(model)),
-      output_every_(
-          std::max<std::int64_t>(1, std::llround(model.params.simulation.output_interval_s /
-                                                 model.params.simulation.step_s))),
       recorder_(options.recorder) {
   initial_input_ =
       options.initial_input != nullptr ? *options.initial_input : StaticLoadInput(model);
-  input_ = initial_input_;
-  state_ = sim_.InitialState(input_);
+  driver_.SetInput(initial_input_);
   for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
-    latest_.current_A[a] = input_.amb[a].current_A;
+    latest_.current_A[a] = initial_input_.amb[a].current_A;
   }
 }
 
-void HilSession::SendSensors() noexcept {
-  sim_.Observe(state_, &obs_);
-  sensors_.Sample(obs_, &readings_);
-  link_->ObserveState(obs_);
-  link_->SendSensors(readings_, state_.step_index, obs_.time_s);
+void HilSession::OnSensors(StepDriver& driver, std::int64_t step) noexcept {
+  if (!send_) return;  // a skipped period's sample: taken (the sensors count it), not sent
+  const Observation& obs = driver.observation();
+  link_->ObserveState(obs);
+  link_->SendSensors(driver.readings(), step, obs.time_s);
   ++counters_.sensor_samples_sent;
   if (recorder_ != nullptr) {
-    recorder_->OnSensors(RecordedSensors{state_.step_index, obs_.time_s, readings_});
+    recorder_->OnSensors(RecordedSensors{step, obs.time_s, driver.readings()});
   }
 }
 
-void HilSession::PushObservation() noexcept {
-  if (outputs_ != nullptr && !outputs_->TryPush(obs_)) ++counters_.observations_dropped;
-  if (recorder_ != nullptr) recorder_->OnState(state_, obs_);
+void HilSession::OnOutput(StepDriver& driver) noexcept {
+  if (outputs_ != nullptr && !outputs_->TryPush(driver.observation())) {
+    ++counters_.observations_dropped;
+  }
+  if (recorder_ != nullptr) recorder_->OnState(driver.state(), driver.observation());
 }
 
 void HilSession::Start(std::int64_t now_ns) noexcept {
@@ -73,54 +68,61 @@ void HilSession::Start(std::int64_t now_ns) noexcept {
     start.loop_current_A = latest_.current_A;
     recorder_->OnStart(start);
   }
-  SendSensors();
-  PushObservation();
+  driver_.Start(driver_.sim().InitialState(initial_input_));
+  driver_.SampleNow(*this);
+  driver_.Observe();
+  OnOutput(driver_);
 }
 
-void HilSession::PrepareInput(std::int64_t step, double time_s) noexcept {
+void HilSession::PowerEvents(StepDriver& driver, std::int64_t step) noexcept {
+  if (!period_start_) return;
   // Power events first: an axis that loses power keeps the current that was flowing then.
   PowerEvent event;
+  const double time_s = driver.sim().Time(driver.state());
   for (TriggerSource* trigger : triggers_) {
     while (trigger->Poll(time_s, &event)) {
-      power_.Apply(event, step, input_);
+      driver.ApplyPower(event);
       if (counters_.power_events == 0) counters_.first_power_event_step = step;
       ++counters_.power_events;
       if (recorder_ != nullptr) recorder_->OnPower(RecordedPower{step, event});
     }
   }
+}
+
+bool HilSession::Command(StepDriver& driver, std::int64_t) noexcept {
+  if (!period_start_) return true;
+  period_start_ = false;
   // Recorded after the power events: a replay applies them in this order.
   if (pending_record_valid_ && recorder_ != nullptr) recorder_->OnInput(pending_record_);
   pending_record_valid_ = false;
   for (std::size_t a = 0; a < model_.params.ambs.size(); ++a) {
-    input_.amb[a].current_A = latest_.current_A[a];
-  }
-  power_.Fill(step, &input_);
-}
-
-bool HilSession::AdvancePhysics() noexcept {
-  for (std::int64_t k = 0; k < substeps_; ++k) {
-    const StepStatus status = sim_.Step(&state_, input_);
-    if (status != StepStatus::kOk) {
-      stop_ = HilStop::kDiverged;
-      step_status_ = status;
-      return false;
-    }
-    if ((outputs_ != nullptr || recorder_ != nullptr) && state_.step_index % output_every_ == 0) {
-      sim_.Observe(state_, &obs_);
-      PushObservation();
-    }
+    driver.command()[a] = latest_.current_A[a];
   }
   return true;
 }
 
+bool HilSession::AdvancePeriod(bool send) noexcept {
+  period_start_ = true;
+  send_ = send;
+  for (std::int64_t k = 0; k < substeps_; ++k) {
+    if (!driver_.Step(*this)) {
+      stop_ = HilStop::kDiverged;
+      step_status_ = driver_.status();
+      send_ = true;
+      return false;
+    }
+  }
+  // The period's closing sample now, not at the next period's first step: the controller has
+  // the rest of the period to answer it.
+  driver_.SampleNow(*this);
+  send_ = true;
+  return true;
+}
+
 bool HilSession::CatchUpPeriod() noexcept {
-  PrepareInput(state_.step_index, sim_.Time(state_));
-  if (!AdvancePhysics()) return false;
+  if (!AdvancePeriod(false)) return false;
   ++counters_.catch_up_periods;
-  // Sampled, not sent (see Period).
-  sim_.Observe(state_, &obs_);
-  sensors_.Sample(obs_, &readings_);
-  if (state_.step_index >= model_.total_steps) {
+  if (driver_.state().step_index >= model_.total_steps) {
     stop_ = HilStop::kDuration;
     return false;
   }
@@ -142,7 +144,7 @@ bool HilSession::Period(std::int64_t now_ns, std::int64_t missed_before) noexcep
   }
   RecordedInput& record = pending_record_;
   record = RecordedInput{};
-  record.step = state_.step_index;
+  record.step = driver_.state().step_index;
   if (received) {
     watchdog_zeroed_ = false;
     record.receive_ns = latest_.receive_ns;
@@ -180,12 +182,9 @@ bool HilSession::Period(std::int64_t now_ns, std::int64_t missed_before) noexcep
   for (std::int64_t m = 0; m < missed_before; ++m) {
     if (!CatchUpPeriod()) return false;
   }
-  PrepareInput(state_.step_index, sim_.Time(state_));
-
-  // Physics over the period, the input held.
-  if (!AdvancePhysics()) return false;
-  SendSensors();
-  if (state_.step_index >= model_.total_steps) {
+  // Physics over the period, the controller's currents held; its closing sample is sent.
+  if (!AdvancePeriod(true)) return false;
+  if (driver_.state().step_index >= model_.total_steps) {
     stop_ = HilStop::kDuration;
     return false;
   }

@@ -7,6 +7,7 @@
 #include "controller_if/boundary/sensor_emulator.hpp"
 #include "controller_if/loop/controller_link.hpp"
 #include "controller_if/loop/run_record.hpp"
+#include "controller_if/loop/step_driver.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/simulator.hpp"
 #include "rt_core/spsc_ring.hpp"
@@ -67,19 +68,26 @@ class HilSession {
   HilStop stop() const noexcept { return stop_; }
   /// What the step reported when the run diverged (kOk otherwise); see DescribeFailure.
   StepStatus step_status() const noexcept { return step_status_; }
-  const State& state() const noexcept { return state_; }
+  const State& state() const noexcept { return driver_.state(); }
   const HilCounters& counters() const noexcept { return counters_; }
   const ControllerWatchdog& watchdog() const noexcept { return watchdog_; }
   std::int64_t substeps() const noexcept { return substeps_; }
   double period_s() const noexcept { return substeps_ * model_.params.simulation.step_s; }
 
  private:
-  void SendSensors() noexcept;
-  void PushObservation() noexcept;
-  // Power events due at `step`, the held currents and the power state into input_.
-  void PrepareInput(std::int64_t step, double time_s) noexcept;
-  // The physics over one period with input_ held; false (stop_ set) if it diverged.
-  bool AdvancePhysics() noexcept;
+  friend class StepDriver;
+  // The step driver's hooks (step_driver.hpp): the trigger sources' power events and the
+  // controller's newest currents at a period's first step, the sample sent at its end.
+  void OnSensors(StepDriver& driver, std::int64_t step) noexcept;
+  void PowerEvents(StepDriver& driver, std::int64_t step) noexcept;
+  bool Command(StepDriver& driver, std::int64_t step) noexcept;
+  void BeginStep(StepDriver&, std::int64_t) noexcept {}
+  bool BeforeStep(StepDriver&) noexcept { return true; }
+  void OnOutput(StepDriver&) noexcept;
+
+  // The physics over one period, the controller's currents held; false (stop_ set) if it
+  // diverged. `send`: the sample at its end goes to the controller (not for a skipped period).
+  bool AdvancePeriod(bool send) noexcept;
   // One skipped period (see Period); false when the run must end.
   bool CatchUpPeriod() noexcept;
 
@@ -87,19 +95,14 @@ class HilSession {
   ControllerLink* link_;
   std::vector<TriggerSource*> triggers_;
   OutputRing* outputs_;
-  Simulator sim_;
-  SensorEmulator sensors_;
-  PowerState power_;
+  StepDriver driver_;
   ControllerWatchdog watchdog_;
   std::int64_t substeps_;
-  std::int64_t output_every_;
-  State state_;
-  ControlInput input_;
   ControlInput initial_input_;
   CurrentsMessage latest_;
-  Observation obs_;
-  SensorReadings readings_;
   HilCounters counters_;
+  bool period_start_ = false;  // the next step is a period's first: events and currents are due
+  bool send_ = true;           // the period's closing sample goes to the controller
   RunRecorder* recorder_;
   bool watchdog_zeroed_ = false;  // the zero currents of this silence are recorded
   RecordedInput pending_record_;  // this period's input, recorded once the power events are

@@ -13,6 +13,7 @@
 #include "controller_if/loop/hil_session.hpp"
 #include "controller_if/loop/settled_start.hpp"
 #include "controller_if/loop/state_dump.hpp"
+#include "controller_if/loop/step_driver.hpp"
 #include "rt_core/amb_force.hpp"
 #include "rt_core/power_loss_drive.hpp"
 
@@ -49,6 +50,100 @@ OfflineRunResult RunOffline(const Model& model,
   return RunOfflineWithCurrents(model, with_currents, on_progress, recorder);
 }
 
+namespace {
+
+// `ambdrop sim`'s sources around the step driver: the scheduled trigger and restore, the
+// in-process controller (on its sensor samples) or the configured current profiles, output rows
+// with the currents applied over the step that starts at them, and the recorder.
+struct OfflineHooks : StepHooks {
+  const Model& model;
+  bool internal;
+  std::int64_t substeps;
+  ReferenceController* controller;
+  RunRecorder* recorder;
+  const OfflineOutput& on_output;
+  PowerEvent failure;
+  PowerEvent restore;
+  ControlInput controller_out;
+  // The currents last recorded: a profile's are recorded only when they change.
+  AxisCurrents recorded_A{};
+  // An output row waits for the currents applied from its time on, known at the next step.
+  Observation row;
+  bool row_pending = false;
+
+  OfflineHooks(const Model& m, bool in, std::int64_t sub, ReferenceController* c, RunRecorder* r,
+               const OfflineOutput& out)
+      : model(m),
+        internal(in),
+        substeps(sub),
+        controller(c),
+        recorder(r),
+        on_output(out),
+        failure(ScheduledFailure(m)),
+        restore(ScheduledRestore(m)) {}
+
+  void ApplyPower(StepDriver& d, const PowerEvent& event, std::int64_t k) noexcept {
+    d.ApplyPower(event);
+    if (recorder != nullptr) recorder->OnPower(RecordedPower{k, event});
+  }
+  void OnSensors(StepDriver& d, std::int64_t k) noexcept {
+    if (!internal) return;
+    if (recorder != nullptr) {
+      recorder->OnSensors(RecordedSensors{k, d.observation().time_s, d.readings()});
+    }
+  }
+  void PowerEvents(StepDriver& d, std::int64_t k) noexcept {
+    if (k == model.trigger_step && k > 0) ApplyPower(d, failure, k);
+    if (k == model.restore_step) ApplyPower(d, restore, k);
+  }
+  // The controller (on its own supply) keeps running; an unpowered axis's amplifier is off, so
+  // the power state overrides its current with the one it had when power failed.
+  bool Command(StepDriver& d, std::int64_t k) noexcept {
+    if (internal) {
+      if (k % substeps != 0) return true;
+      controller->Update(d.readings(), &controller_out);
+      for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+        d.command()[a] = controller_out.amb[a].current_A;
+      }
+    } else {
+      const double dt = model.params.simulation.step_s;
+      for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+        d.command()[a] = CurrentAt(model.params.ambs[a].current_profile, k * dt);
+      }
+    }
+    RecordCurrents(d, k);
+    return true;
+  }
+  void RecordCurrents(const StepDriver& d, std::int64_t k) noexcept {
+    if (recorder == nullptr) return;
+    RecordedInput in;
+    in.step = k;
+    in.receive_ns = std::llround(static_cast<double>(k) * model.params.simulation.step_s * 1e9);
+    for (std::size_t a = 0; a < model.params.ambs.size(); ++a) in.current_A[a] = d.command()[a];
+    // Bitwise, so that a change of sign of a zero is recorded too.
+    if (k > 0 && std::memcmp(&in.current_A, &recorded_A, sizeof recorded_A) == 0) return;
+    recorded_A = in.current_A;
+    recorder->OnInput(in);
+  }
+  bool BeforeStep(StepDriver& d) noexcept {
+    EmitRow(d);
+    return true;
+  }
+  void OnOutput(StepDriver& d) noexcept { Output(d.state(), d.observation()); }
+  void Output(const State& state, const Observation& o) noexcept {
+    row = o;
+    row_pending = static_cast<bool>(on_output);
+    if (recorder != nullptr) recorder->OnState(state, row);
+  }
+  void EmitRow(const StepDriver& d) {
+    if (!row_pending) return;
+    row_pending = false;
+    on_output(row, RowCurrents(model, d.command(), d.input()));
+  }
+};
+
+}  // namespace
+
 OfflineRunResult RunOfflineWithCurrents(const Model& model, const OfflineOutput& on_output,
                                         const std::function<void(double)>& on_progress,
                                         RunRecorder* recorder) {
@@ -56,8 +151,7 @@ OfflineRunResult RunOfflineWithCurrents(const Model& model, const OfflineOutput&
   const std::int64_t substeps =
       model.params.controller.kind == ControllerKind::kNone ? 1 : ControllerSubsteps(model);
   const bool internal = model.params.controller.kind == ControllerKind::kInternalPid;
-  Simulator sim(model);
-  SensorEmulator sensors(model.params.sensors, static_cast<double>(substeps) * dt);
+  StepDriver driver(model, internal ? substeps : 0);
   std::optional<ReferenceController> controller;
   ControlInput input;
   if (internal) {
@@ -68,11 +162,12 @@ OfflineRunResult RunOfflineWithCurrents(const Model& model, const OfflineOutput&
   }
   OfflineRunResult result;
   // The opt-in settled start: the closed loop runs before t = 0
-  // (controller_if/loop/settled_start.hpp).
+  // (controller_if/loop/settled_start.hpp), on the run's own sensors.
   std::optional<State> settled;
   if (internal && model.params.simulation.settle_s > 0.0) {
-    State s = sim.InitialState(StaticLoadInput(model));
-    const SettleResult r = SettleClosedLoop(model, sim, &s, &*controller, &sensors, &input);
+    State s = driver.sim().InitialState(StaticLoadInput(model));
+    const SettleResult r =
+        SettleClosedLoop(model, driver.sim(), &s, &*controller, driver.sensors(), &input);
     result.settle_steps = r.steps;
     result.settle_last_change_m = r.last_change_m;
     if (r.status != StepStatus::kOk) {
@@ -83,108 +178,44 @@ OfflineRunResult RunOfflineWithCurrents(const Model& model, const OfflineOutput&
     }
     settled = s;
   }
-  PowerState power(model);
-  const PowerEvent failure = ScheduledFailure(model);
-  const PowerEvent restore = ScheduledRestore(model);
-  const auto apply_power = [&](const PowerEvent& event, std::int64_t k) {
-    power.Apply(event, k, input);
-    if (recorder != nullptr) recorder->OnPower(RecordedPower{k, event});
-  };
+  OfflineHooks hooks(model, internal, substeps, controller ? &*controller : nullptr, recorder,
+                     on_output);
+  driver.SetInput(input);
   RecordedStart start;
-  for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
-    start.loop_current_A[a] = input.amb[a].current_A;
-  }
-  // What the controller or the profile commands; PowerState overrides an unpowered axis's
-  // current in `input`, so the command is kept apart.
-  std::array<std::array<double, 2>, kMaxAmbs> command_A = start.loop_current_A;
-  if (model.trigger_step == 0) apply_power(failure, 0);
-  power.Fill(0, &input);
+  start.loop_current_A = driver.command();
+  hooks.recorded_A = start.loop_current_A;
+  if (model.trigger_step == 0) hooks.ApplyPower(driver, hooks.failure, 0);
+  driver.FillInput(0);
 
   // A controller-driven rotor starts levitated on the currents that carry its static load.
-  start.equilibrium_input = internal ? StaticLoadInput(model) : input;
-  State state = settled ? *settled : sim.InitialState(start.equilibrium_input);
+  start.equilibrium_input = internal ? StaticLoadInput(model) : driver.input();
+  const State initial = settled ? *settled : driver.sim().InitialState(start.equilibrium_input);
   if (recorder != nullptr) recorder->OnStart(start);
-  // The currents last recorded: a profile's are recorded only when they change.
-  std::array<std::array<double, 2>, kMaxAmbs> recorded_A = start.loop_current_A;
-  const auto record_currents = [&](std::int64_t k) {
-    if (recorder == nullptr) return;
-    RecordedInput in;
-    in.step = k;
-    in.receive_ns = std::llround(static_cast<double>(k) * dt * 1e9);
-    for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
-      in.current_A[a] = input.amb[a].current_A;
-    }
-    // Bitwise, so that a change of sign of a zero is recorded too.
-    if (k > 0 && std::memcmp(&in.current_A, &recorded_A, sizeof recorded_A) == 0) return;
-    recorded_A = in.current_A;
-    recorder->OnInput(in);
-  };
-  const std::int64_t output_every =
-      std::max<std::int64_t>(1, std::llround(model.params.simulation.output_interval_s / dt));
-  const std::int64_t progress_every = std::max<std::int64_t>(1, model.total_steps / 200);
-  Observation obs;
-  SensorReadings readings;
-  // An output row waits for the currents applied from its time on, known at the next step.
-  Observation row;
-  bool row_pending = false;
-  const auto emit_row = [&] {
-    if (!row_pending) return;
-    row_pending = false;
-    on_output(row, RowCurrents(model, command_A, input));
-  };
   if (on_output || recorder != nullptr) {
-    sim.Observe(state, &row);
-    row_pending = static_cast<bool>(on_output);
-    if (recorder != nullptr) recorder->OnState(state, row);
+    Observation first;
+    driver.sim().Observe(initial, &first);
+    hooks.Output(initial, first);
   }
-  while (state.step_index < model.total_steps) {
-    const std::int64_t k = state.step_index;
-    if (k == model.trigger_step && k > 0) apply_power(failure, k);
-    if (k == model.restore_step) apply_power(restore, k);
-    // The controller (on its own supply) keeps running; an unpowered axis's amplifier is off,
-    // so PowerState overrides its current with the one it had when power failed.
-    if (internal) {
-      if (k % substeps == 0) {
-        sim.Observe(state, &obs);
-        sensors.Sample(obs, &readings);
-        if (recorder != nullptr) recorder->OnSensors(RecordedSensors{k, obs.time_s, readings});
-        controller->Update(readings, &input);
-        for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
-          command_A[a] = input.amb[a].current_A;
-        }
-        record_currents(k);
-      }
-    } else {
-      for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
-        input.amb[a].current_A = CurrentAt(model.params.ambs[a].current_profile, k * dt);
-        command_A[a] = input.amb[a].current_A;
-      }
-      record_currents(k);
-    }
-    power.Fill(k, &input);
-    emit_row();
-    const StepStatus status = sim.Step(&state, input);
-    if (status != StepStatus::kOk) {
-      result.status = status;
-      result.failure_message = DescribeFailure(model, status, state);
+  driver.Start(initial);
+  const std::int64_t progress_every = std::max<std::int64_t>(1, model.total_steps / 200);
+  while (driver.state().step_index < model.total_steps) {
+    if (!driver.Step(hooks)) {
+      result.status = driver.status();
+      result.failure_message = DescribeFailure(model, driver.status(), driver.state());
       break;
     }
-    if ((on_output || recorder != nullptr) && state.step_index % output_every == 0) {
-      sim.Observe(state, &row);
-      row_pending = static_cast<bool>(on_output);
-      if (recorder != nullptr) recorder->OnState(state, row);
-    }
-    if (on_progress && state.step_index % progress_every == 0) {
-      on_progress(static_cast<double>(state.step_index) / static_cast<double>(model.total_steps));
+    const std::int64_t k = driver.state().step_index;
+    if (on_progress && k % progress_every == 0) {
+      on_progress(static_cast<double>(k) / static_cast<double>(model.total_steps));
     }
   }
   // The last row: no step follows; its coil currents are those of the power state at its time.
-  if (row_pending) {
-    power.Fill(state.step_index, &input);
-    emit_row();
+  if (hooks.row_pending) {
+    driver.FillInput(driver.state().step_index);
+    hooks.EmitRow(driver);
   }
-  result.steps = state.step_index;
-  result.final_state = state;
+  result.steps = driver.state().step_index;
+  result.final_state = driver.state();
   return result;
 }
 

@@ -17,6 +17,7 @@
 #include "controller_if/loop/periodic_loop.hpp"
 #include "controller_if/loop/rt_clock.hpp"
 #include "controller_if/loop/rt_system.hpp"
+#include "controller_if/loop/step_driver.hpp"
 #include "io/config/config_loader.hpp"
 #include "io/files/json_writer.hpp"
 #include "io/files/timeseries_csv.hpp"
@@ -166,9 +167,7 @@ int RunHilCommand(const HilCommandOptions& given) {
     header.controller = options.controller;
     header.config_toml = config.effective_toml;
     header.sensor_every_steps = ControllerSubsteps(*model);
-    header.output_every_steps = std::max<std::int64_t>(
-        1,
-        std::llround(model->params.simulation.output_interval_s / model->params.simulation.step_s));
+    header.output_every_steps = OutputEverySteps(*model);
     header.total_steps = model->total_steps;
     RecordWriterOptions record_options;
     // Live: wall-clock stamps, and a full ring drops (counted in the footer) rather than

@@ -6,18 +6,16 @@
 
 #include "io/config/config_loader.hpp"
 #include "io/files/json_writer.hpp"
+#include "tools/cli/command_config.hpp"
 #include "tools/cli/exit_codes.hpp"
 
 namespace ambdrop {
 
 int RunKeysCommand(const KeysOptions& options) {
-  LoadedConfig config;
-  try {
-    config = LoadConfig(options.config_path, options.overrides);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return kExitConfig;
-  }
+  const std::optional<LoadedConfig> loaded =
+      LoadCommandConfig(options.config_path, options.overrides);
+  if (!loaded) return kExitConfig;
+  const LoadedConfig& config = *loaded;
   std::vector<const ConfigKey*> shown;
   for (const ConfigKey& k : config.keys) {
     if (options.key_class.empty() || options.key_class == KeyClassName(k.key_class)) {

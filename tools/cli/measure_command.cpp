@@ -12,6 +12,7 @@
 #include "io/config/config_loader.hpp"
 #include "io/files/json_writer.hpp"
 #include "io/files/measured_csv.hpp"
+#include "tools/cli/command_config.hpp"
 #include "tools/cli/exit_codes.hpp"
 #include "tools/cli/progress_bar.hpp"
 #include "tools/fit/measured_record_maker.hpp"
@@ -75,17 +76,10 @@ int RunMeasureCommand(const MeasureCommandOptions& options) {
   measure.seed = options.seed;
   measure.from_s = options.from_s;
 
-  LoadedConfig config;
-  try {
-    config = LoadConfig(options.config_path, options.overrides);
-  } catch (const ConfigError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return kExitConfig;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}: {}\n", options.config_path, e.what());
-    return kExitConfig;
-  }
-  const ModelParams& truth = config.params;
+  const std::optional<LoadedConfig> config =
+      LoadCommandConfig(options.config_path, options.overrides);
+  if (!config) return kExitConfig;
+  const ModelParams& truth = config->params;
 
   // Option values that cannot fit this rig are command-line errors, caught before the run.
   try {

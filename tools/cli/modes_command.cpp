@@ -11,6 +11,7 @@
 #include "io/config/config_loader.hpp"
 #include "io/files/json_writer.hpp"
 #include "rt_core/modal_analysis.hpp"
+#include "tools/cli/command_config.hpp"
 #include "tools/cli/exit_codes.hpp"
 
 namespace ambdrop {
@@ -60,17 +61,10 @@ void PrintTable(const ModalAnalysis& modes) {
 }  // namespace
 
 int RunModesCommand(const ModesOptions& options) {
-  LoadedConfig config;
-  try {
-    config = LoadConfig(options.config_path, options.overrides);
-  } catch (const ConfigError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return kExitConfig;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}: {}\n", options.config_path, e.what());
-    return kExitConfig;
-  }
-  const ModelParams& params = config.params;
+  const std::optional<LoadedConfig> config =
+      LoadCommandConfig(options.config_path, options.overrides);
+  if (!config) return kExitConfig;
+  const ModelParams& params = config->params;
 
   // Without --speed-rpm the natural choice is the speed the config runs at before the drop.
   const double speed_rad_s = options.speed_rpm ? *options.speed_rpm * kRadPerSecondPerRpm

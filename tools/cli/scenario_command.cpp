@@ -14,6 +14,7 @@
 #include "controller_if/controller/profile_controller_link.hpp"
 #include "controller_if/loop/hil_session.hpp"
 #include "controller_if/loop/state_dump.hpp"
+#include "controller_if/loop/step_driver.hpp"
 #include "io/config/config_loader.hpp"
 #include "io/files/json_writer.hpp"
 #include "io/files/timeseries_csv.hpp"
@@ -88,8 +89,7 @@ int RunScenarioCommand(const SimOptions& options) {
                               : "internal+scenario";
       header.config_toml = config.effective_toml;
       header.sensor_every_steps = substeps;
-      header.output_every_steps =
-          std::max<std::int64_t>(1, std::llround(model->params.simulation.output_interval_s / dt));
+      header.output_every_steps = OutputEverySteps(*model);
       header.total_steps = model->total_steps;
       recorder = std::make_unique<RunRecordWriter>(options.record_path, *model, header);
     }

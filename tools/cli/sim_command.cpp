@@ -17,10 +17,12 @@
 
 #include "controller_if/loop/hil_session.hpp"
 #include "controller_if/loop/offline_run.hpp"
+#include "controller_if/loop/step_driver.hpp"
 #include "io/config/config_loader.hpp"
 #include "io/files/json_writer.hpp"
 #include "io/files/timeseries_csv.hpp"
 #include "rt_core/model.hpp"
+#include "tools/cli/command_config.hpp"
 #include "tools/cli/exit_codes.hpp"
 #include "tools/cli/long_run_note.hpp"
 #include "tools/cli/progress_bar.hpp"
@@ -148,27 +150,12 @@ int RunSimCommand(const SimOptions& options) {
     }
     return RunScenarioCommand(options);
   }
-  LoadedConfig config;
-  try {
-    config = LoadConfig(options.config_path, options.overrides);
-  } catch (const ConfigError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return kExitConfig;
-  } catch (const std::exception& e) {
-    // Anything else the loader throws (unreadable file …) is still a problem with the input.
-    fmt::print(stderr, "error: {}: {}\n", options.config_path, e.what());
-    return kExitConfig;
-  }
-
-  std::optional<Model> model;
-  try {
-    model.emplace(BuildModel(config.params));
-    // The controller period in whole steps: a config error here, not an exception mid-run.
-    if (model->params.controller.kind != ControllerKind::kNone) ControllerSubsteps(*model);
-  } catch (const std::invalid_argument& e) {
-    fmt::print(stderr, "error: {}: cannot build the model: {}\n", options.config_path, e.what());
-    return kExitConfig;
-  }
+  const std::optional<LoadedConfig> loaded =
+      LoadCommandConfig(options.config_path, options.overrides);
+  if (!loaded) return kExitConfig;
+  const LoadedConfig& config = *loaded;
+  const std::optional<Model> model = BuildCommandModel(options.config_path, config.params);
+  if (!model) return kExitConfig;
 
   NoteLongRun(*model, false);
 
@@ -200,9 +187,7 @@ int RunSimCommand(const SimOptions& options) {
     header.controller = internal ? "internal" : "profile";
     header.config_toml = config.effective_toml;
     header.sensor_every_steps = internal ? ControllerSubsteps(*model) : 0;
-    header.output_every_steps = std::max<std::int64_t>(
-        1,
-        std::llround(model->params.simulation.output_interval_s / model->params.simulation.step_s));
+    header.output_every_steps = OutputEverySteps(*model);
     header.total_steps = model->total_steps;
     try {
       recorder = std::make_unique<RunRecordWriter>(options.record_path, *model, header);

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -15,6 +16,7 @@
 #include "controller_if/loop/hil_session.hpp"
 #include "controller_if/loop/settled_start.hpp"
 #include "controller_if/loop/state_dump.hpp"
+#include "controller_if/loop/step_driver.hpp"
 #include "rt_core/amb_force.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/power_loss_drive.hpp"
@@ -307,13 +309,6 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
       }
     }
   };
-  const auto held_currents = [&] {
-    for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
-      for (int axis = 0; axis < 2; ++axis) {
-        if (current_column[a][axis] >= 0) input.amb[a].current_A[axis] = held_A[a][axis];
-      }
-    }
-  };
   // The controller's output before the power state overrides an unpowered axis's current: the
   // controller, on its own supply, keeps commanding.
   std::array<std::array<double, 2>, kMaxAmbs> command_A{};
@@ -338,32 +333,30 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
     record_tare[c] = n > 0 ? sum / static_cast<double>(n) : v.front();
   }
 
-  Simulator sim(model);
+  const bool controlled = closed && model.params.controller.kind == ControllerKind::kInternalPid;
+  const std::int64_t substeps = controlled ? ControllerSubsteps(model) : 1;
+  // The steps in `ambdrop sim`'s order (controller_if/loop/step_driver.hpp); the controller's
+  // sensors are the driver's, sampled at its period.
+  StepDriver driver(model, controlled ? substeps : 0);
   std::optional<ReferenceController> controller;
-  std::optional<SensorEmulator> controller_sensors;
-  std::int64_t substeps = 1;
   State state;
   // measurement.trigger_state = "record": the state `lead` seconds before the trigger moved to
   // the lead window's fit (plus a start-sensitivity probe's shift), and that fit's uncertainty.
-  const auto fit_lead_window = [&](double lead) {
+  const auto fit_lead_window = [&](State& at, double lead) {
     const LeadStateFit fit =
-        FitLeadState(declared, m, r, options, model, state, out.trigger_time_s, lead);
-    state.y.head(2 * n) += fit.correction;
+        FitLeadState(declared, m, r, options, model, at, out.trigger_time_s, lead);
+    at.y.head(2 * n) += fit.correction;
     if (fit.current_correction) correction = fit.current_correction;
     out.lead_uncertainty = fit.uncertainty;
     out.lead_fit = fit.note;
   };
-  const bool controlled = closed && model.params.controller.kind == ControllerKind::kInternalPid;
   if (controlled) {
-    substeps = ControllerSubsteps(model);
-    const double period = static_cast<double>(substeps) * dt;
-    controller.emplace(model, period);
-    controller_sensors.emplace(model.params.sensors, period);
+    controller.emplace(model, static_cast<double>(substeps) * dt);
     controller->Initial(&input);
-    state = sim.InitialState(static_load);
+    state = driver.sim().InitialState(static_load);
     // As `ambdrop sim` starts it: settled first when the config asks (simulation.settle_s).
     const SettleResult settled =
-        SettleClosedLoop(model, sim, &state, &*controller, &*controller_sensors, &input);
+        SettleClosedLoop(model, driver.sim(), &state, &*controller, driver.sensors(), &input);
     if (settled.status != StepStatus::kOk) {
       // Nothing of the record was reached: every row NaN, as after a run that stopped.
       out.values.assign(m.channels.size(), std::vector<double>(r.time_s.size(), kNaN));
@@ -373,20 +366,20 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
     }
     keep_command();
   } else if (closed) {
-    state = sim.InitialState(static_load);
+    state = driver.sim().InitialState(static_load);
   } else {
     measured_currents(t_start, false);
     if (options.initial_state) {
       state = *options.initial_state;
       state.step_index = 0;
     } else {
-      state = sim.InitialState(input);
+      state = driver.sim().InitialState(input);
       // The modal coordinates that best explain the displacement channels around the start.
       SetToRecordedState(model, m, r, t_start, options, &state);
       state.y(model.spin_angle_index()) = configured_spin * t_start;
     }
     if (options.state_correction.size() == 2 * n) state.y.head(2 * n) += options.state_correction;
-    if (lead_fit_open) fit_lead_window(out.trigger_time_s - t_start);
+    if (lead_fit_open) fit_lead_window(state, out.trigger_time_s - t_start);
   }
   // measurement.trigger_state = "record": over a lead window before the trigger the record's
   // currents drive the rotor, whose seen state is fitted to the window (lead_state_estimate.hpp).
@@ -408,16 +401,18 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
   out.first_row = static_cast<std::size_t>(
       std::lower_bound(r.time_s.begin(), r.time_s.end(), t_start - 0.5 * dt) - r.time_s.begin());
   out.values.assign(m.channels.size(), std::vector<double>(record_rows, kNaN));
+  // The record's sampler: what the rows predict (noise and quantisation off, above).
   SensorEmulator sensors(model.params.sensors, r.SampleInterval());
-  PowerState power(model);
   const PowerEvent failure = ScheduledFailure(model);
-  Observation obs;
   SensorReadings readings;
   std::size_t row = out.first_row;
   if (options.keep_states) out.states.assign(record_rows, Eigen::VectorXd());
-  const auto record_row = [&](std::size_t j) {
+  const auto record_row = [&](const StepDriver& d, std::size_t j) {
+    const State& state = d.state();
+    const ControlInput& input = d.input();
     if (options.keep_states) out.states[j] = state.y.head(2 * n);
-    sim.Observe(state, &obs);
+    Observation obs;
+    d.sim().Observe(state, &obs);
     sensors.Sample(obs, &readings);
     for (std::size_t c = 0; c < m.channels.size(); ++c) {
       const MeasurementChannel& ch = m.channels[c];
@@ -456,49 +451,70 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
       out.values[c][j] = v;
     }
   };
-  SensorReadings controller_readings;
-  while (row < total_rows) {
-    const std::int64_t k = state.step_index;
-    const double t_record = t_start + static_cast<double>(k) * dt;
-    // Power first, as `ambdrop sim` applies it: the controller's update of this step comes after.
-    if (k == model.trigger_step) {
-      if (options.trigger_state_shift.size() == 2 * n) {
-        state.y.head(2 * n) += options.trigger_state_shift;
+
+  // The record's sources around the step driver.
+  struct RecordHooks : StepHooks {
+    std::function<void(StepDriver&, std::int64_t)> begin, power, command;
+    std::function<bool(StepDriver&)> before;
+    void BeginStep(StepDriver& d, std::int64_t k) noexcept { begin(d, k); }
+    void PowerEvents(StepDriver& d, std::int64_t k) noexcept { power(d, k); }
+    bool Command(StepDriver& d, std::int64_t k) noexcept {
+      command(d, k);
+      return true;
+    }
+    bool BeforeStep(StepDriver& d) noexcept { return before(d); }
+  } hooks;
+  hooks.begin = [&](StepDriver& d, std::int64_t k) {
+    if (k == model.trigger_step && options.trigger_state_shift.size() == 2 * n) {
+      d.mutable_state().y.head(2 * n) += options.trigger_state_shift;
+    }
+  };
+  hooks.power = [&](StepDriver& d, std::int64_t k) {
+    if (k != model.trigger_step) return;
+    // What flowed when power failed is what was measured then: a controller answers its
+    // sensors' noise, so the model's own command at that instant is off by that jitter. The
+    // power state freezes the input's currents.
+    for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+      for (int axis = 0; axis < 2; ++axis) {
+        if (current_column[a][axis] >= 0)
+          d.mutable_input().amb[a].current_A[axis] = held_A[a][axis];
       }
-      // What flowed when power failed is what was measured then: a controller answers its
-      // sensors' noise, so the model's own command at that instant is off by that jitter.
-      held_currents();
-      power.Apply(failure, k, input);
     }
-    if (k == lead_step) {
-      fit_lead_window(static_cast<double>(model.trigger_step - k) * dt);
-      lead_driven = true;
-    }
+    d.ApplyPower(failure);
+  };
+  hooks.command = [&](StepDriver& d, std::int64_t k) {
     if (controlled && k % substeps == 0) {
-      sim.Observe(state, &obs);
-      controller_sensors->Sample(obs, &controller_readings);
-      controller->Update(controller_readings, &input);
+      controller->Update(d.readings(), &input);
       keep_command();
     }
-    if ((!closed || lead_driven) && k < model.trigger_step) measured_currents(t_record, false);
+    if ((!closed || lead_driven) && k < model.trigger_step) {
+      measured_currents(t_start + static_cast<double>(k) * dt, false);
+    }
     if (!controlled) keep_command();
-    power.Fill(k, &input);
+    for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
+      d.command()[a] = input.amb[a].current_A;
+    }
+  };
+  hooks.before = [&](StepDriver& d) {
+    const std::int64_t k = d.state().step_index;
+    const double t_record = t_start + static_cast<double>(k) * dt;
     if (k >= model.trigger_step) {
       const double seconds = static_cast<double>(k - model.trigger_step) * dt;
+      ControlInput& in = d.mutable_input();
       for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
         for (int axis = 0; axis < 2; ++axis) {
           const int c = driven_column[a][axis];
           if (c < 0) continue;
           const double recorded_A = ValueAt(r, c, t_record);
-          if (power.powered(static_cast<int>(a), axis)) {
-            input.amb[a].current_A[axis] = recorded_A;
+          if (d.power().powered(static_cast<int>(a), axis)) {
+            in.amb[a].current_A[axis] = recorded_A;
             continue;
           }
-          const UnpoweredDrive d =
+          const UnpoweredDrive u =
               RecordedCurrentDrive(model.params.ambs[a], held_A[a][axis], recorded_A, seconds);
-          input.amb[a].current_A[axis] = d.current_A;
-          input.amb[a].force_scale[axis] = d.force_scale;
-          input.amb[a].bias_scale[axis] = d.bias_scale;
+          in.amb[a].current_A[axis] = u.current_A;
+          in.amb[a].force_scale[axis] = u.force_scale;
+          in.amb[a].bias_scale[axis] = u.bias_scale;
         }
       }
     }
@@ -506,17 +522,28 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
     // the currents applied over this step.
     while (row < total_rows && r.time_s[row] < t_record + 0.5 * dt) {
       if (r.time_s[row] >= t_record - 0.5 * dt) {
-        record_row(row);
+        record_row(d, row);
         ++out.rows;
       }
       ++row;
     }
-    if (row >= total_rows) break;
-    const StepStatus status = sim.Step(&state, input);
-    if (status != StepStatus::kOk) {
-      out.status = status;
-      out.failure = DescribeFailure(model, status, state);
-      break;
+    return row < total_rows;
+  };
+  driver.SetInput(input);
+  driver.Start(state);
+  if (row < total_rows) {
+    for (;;) {
+      // The lead window's fit runs between steps, outside the noexcept step: it may throw.
+      if (driver.state().step_index == lead_step && !lead_driven) {
+        fit_lead_window(driver.mutable_state(),
+                        static_cast<double>(model.trigger_step - lead_step) * dt);
+        lead_driven = true;
+      }
+      if (!driver.Step(hooks)) break;
+    }
+    if (!driver.stopped()) {
+      out.status = driver.status();
+      out.failure = DescribeFailure(model, driver.status(), driver.state());
     }
   }
   return out;
