@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 
@@ -20,6 +21,7 @@
 #include "io/files/json_writer.hpp"
 #include "io/files/measured_csv.hpp"
 #include "io/files/measured_record_si.hpp"
+#include "tools/cli/cli_registry.hpp"
 #include "tools/cli/exit_codes.hpp"
 #include "tools/fit/fit_record.hpp"
 #include "tools/fit/fit_report.hpp"
@@ -434,6 +436,59 @@ int RunFitCommand(const FitOptions& options) {
     return FitOneRecord(options, options.measured_paths.front(), options.out_dir, nullptr);
   }
   return FitSeveralRecords(options);
+}
+
+RegisteredCommand AddFitCommand(CLI::App& app) {
+  auto options = std::make_shared<FitOptions>();
+  CLI::App* fit_command = app.add_subcommand(
+      "fit",
+      "Hold the model against a measured record: residuals, the missing effect, its parameters, "
+      "and the error before and after");
+  fit_command->add_option("CONFIG", options->config_path, "The declared model, with [measurement]")
+      ->required();
+  CLI::Option* measured_option =
+      fit_command
+          ->add_option("--measured", options->measured_paths,
+                       "The measured record: CSV, or an ambdrop run record (.lcm); several "
+                       "records of one rig: each fitted, and what they share")
+          ->type_name("FILE...");
+  CLI::Option* spin_up_option =
+      fit_command
+          ->add_option("--spin-up-times", options->spin_up_times,
+                       "Instead of a record: measured TDB spin-up times after the trigger, "
+                       "e.g. de=0.11,nde=0.129; which single parameter change explains them")
+          ->type_name("TDB=S,...");
+  measured_option->excludes(spin_up_option);
+  fit_command
+      ->add_option("--out", options->out_dir, "Output directory (options->json, report.md, plots)")
+      ->type_name("DIR")
+      ->capture_default_str();
+  AddSetOption(fit_command, &options->overrides);
+  fit_command
+      ->add_option("--lead-s", options->lead_s,
+                   "Simulate from this long before the trigger, from the measured state")
+      ->check(kFinite & CLI::PositiveNumber)
+      ->capture_default_str();
+  fit_command->add_option("--threads", options->threads, "Candidates fitted in parallel")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  fit_command
+      ->add_option("--max-runs", options->max_runs_per_start,
+                   "Model runs per start of each candidate's search")
+      ->check(CLI::Range(4, 10000))
+      ->capture_default_str();
+  fit_command
+      ->add_option("--tolerance", options->tolerance,
+                   "A relative RMS residual within which model and record agree anyway, added "
+                   "in quadrature to the limit the record's noise and the model's sensitivity "
+                   "set (0: the record alone decides)")
+      ->check(kFinite & CLI::NonNegativeNumber)
+      ->capture_default_str();
+  fit_command->add_flag("--declared-step", options->declared_step,
+                        "Run every model at the config's step (default: up to 4x coarser "
+                        "where that moves the prediction by under 0.2 of the record's noise)");
+  fit_command->add_flag("--quiet,-q", options->quiet, "No summary on stdout");
+  return {fit_command, [options] { return RunFitCommand(*options); }};
 }
 
 }  // namespace ambdrop

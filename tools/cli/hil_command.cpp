@@ -21,6 +21,7 @@
 #include "io/config/config_loader.hpp"
 #include "io/files/json_writer.hpp"
 #include "io/files/timeseries_csv.hpp"
+#include "tools/cli/cli_registry.hpp"
 #include "tools/cli/exit_codes.hpp"
 #include "tools/cli/hil_checks.hpp"
 #include "tools/cli/junit_report.hpp"
@@ -456,6 +457,109 @@ int RunHilCommand(const HilCommandOptions& given) {
   if (session.stop() == HilStop::kDiverged) return kExitRunFailed;
   if (!output_error.empty() || rejected > 0) return kExitError;
   return check_failures.empty() && expectations_pass ? kExitOk : kExitExpectationFailed;
+}
+
+RegisteredCommand AddHilCommand(CLI::App& app) {
+  auto options = std::make_shared<HilCommandOptions>();
+  CLI::App* hil_command = app.add_subcommand(
+      "hil", "Run the emulator against a controller in real time: currents in, sensors out");
+  CLI::Option* hil_config =
+      hil_command->add_option("CONFIG", options->config_path, "TOML config file");
+  CLI::Option* hil_scenario =
+      hil_command
+          ->add_option("--scenario", options->scenario_path,
+                       "A scenario file in place of CONFIG: its power events, faults and "
+                       "expectations apply to whatever controller runs; exits 4 if one fails")
+          ->type_name("FILE");
+  hil_config->excludes(hil_scenario);
+  hil_command
+      ->add_option("--junit", options->junit_path,
+                   "Write the run's checks and the scenario's expectations as JUnit XML")
+      ->type_name("FILE");
+  hil_command
+      ->add_option("--describe", options->describe_path,
+                   "Write the plant description (index order, units, rates, per AMB the static "
+                   "load, ki, ks, bias and limits; the reference controller in A/m) as JSON, and "
+                   "exit without running")
+      ->type_name("FILE");
+  hil_command->callback([hil_config, hil_scenario] {
+    if (hil_config->count() == 0 && hil_scenario->count() == 0) {
+      throw CLI::RequiredError("CONFIG or --scenario");
+    }
+  });
+  hil_command->add_option("--controller", options->controller, "internal | lcm[:URL] | can:IFACE")
+      ->capture_default_str();
+  hil_command->add_option("--trigger", options->trigger,
+                          "at:SECONDS | gpio:CHIP:LINE | can | lcm (default: the config's "
+                          "[trigger] schedule)");
+  hil_command->add_flag("--virtual-clock", options->virtual_clock,
+                        "Run on simulated time, as fast as possible (offline, tests)");
+  // The real-time flags override the config's [realtime] table; the callbacks note which were
+  // given (an explicit --rt-priority 0 overrides a config priority too).
+  hil_command
+      ->add_option_function<int>(
+          "--rt-priority",
+          [options](int priority) {
+            options->rt_priority = priority;
+            options->rt_priority_given = true;
+          },
+          "SCHED_FIFO priority of the loop thread (0: normal scheduling; default: "
+          "realtime.priority)")
+      ->type_name("P")
+      ->check(CLI::Range(0, 99));
+  hil_command
+      ->add_option_function<int>(
+          "--cpu",
+          [options](int cpu) {
+            options->cpu = cpu;
+            options->cpu_given = true;
+          },
+          "Pin the loop thread to this CPU (-1: any; default: realtime.cpu)")
+      ->type_name("N")
+      ->check(CLI::Range(-1, 1023));
+  hil_command
+      ->add_option("--spin-us", options->spin_us,
+                   "Poll the clock for the last US microseconds before each deadline instead of "
+                   "sleeping (default: realtime.spin_s); with SCHED_FIFO a spin near the period "
+                   "trips the kernel's RT throttling")
+      ->type_name("US")
+      ->check(kFinite & CLI::Range(0.0, 10000.0));
+  hil_command->add_flag(
+      "--lcm-io-fifo", options->lcm_io_fifo,
+      "With --controller lcm and SCHED_FIFO: run LCM's receive and publish threads SCHED_FIFO one "
+      "priority below the loop, off its CPU, so a busy host does not hold the controller's "
+      "answers back (at 20 kHz they then fall under the kernel's RT throttling: slower)");
+  hil_command->add_flag("--enforce-rt", options->enforce_rt,
+                        "Fail if real-time scheduling, CPU pinning or memory locking is refused "
+                        "(also realtime.enforce)");
+  hil_command
+      ->add_option("--watchdog-s", options->watchdog_timeout_s,
+                   "Controller silence that trips the watchdog (s)")
+      ->check(kFinite & CLI::Range(0.0, 1e6))
+      ->capture_default_str();
+  hil_command
+      ->add_option("--silence", options->silence_action, "Watchdog action: hold | zero | stop")
+      ->capture_default_str();
+  hil_command->add_option("--out", options->out_dir, "Output directory")->capture_default_str();
+  AddSetOption(hil_command, &options->overrides);
+  hil_command->add_flag("--quiet,-q", options->quiet, "No summary on stdout");
+  CLI::Option* lockstep =
+      hil_command->add_flag("--lockstep", options->lockstep,
+                            "With --virtual-clock: after each sample sent, wait for the external "
+                            "controller's answer (a controller slower than real time closes the "
+                            "loop sample by sample)");
+  hil_command
+      ->add_option("--lockstep-timeout-s", options->lockstep_timeout_s,
+                   "Longest wait for an answer in --lockstep (wall time, s)")
+      ->check(kFinite & CLI::Range(0.0, 1e6))
+      ->capture_default_str();
+  lockstep->needs(hil_command->get_option("--virtual-clock"));
+  hil_command
+      ->add_option("--record", options->record_path,
+                   "Record the run (currents in with their receive time, power events, sensor "
+                   "samples out, state) into an LCM event log for `ambdrop replay`")
+      ->type_name("FILE.lcm");
+  return {hil_command, [options] { return RunHilCommand(*options); }};
 }
 
 }  // namespace ambdrop

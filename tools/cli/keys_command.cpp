@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <memory>
 
 #include "io/config/config_loader.hpp"
 #include "io/files/json_writer.hpp"
+#include "tools/cli/cli_registry.hpp"
 #include "tools/cli/command_config.hpp"
 #include "tools/cli/exit_codes.hpp"
 
@@ -62,6 +64,19 @@ int RunKeysCommand(const KeysOptions& options) {
                k->declared ? k->location : std::string("(default)"));
   }
   return kExitOk;
+}
+
+RegisteredCommand AddKeysCommand(CLI::App& app) {
+  auto options = std::make_shared<KeysOptions>();
+  CLI::App* keys_command = app.add_subcommand(
+      "keys", "Every number of a config: its --set path, value, unit, class and fit range");
+  keys_command->add_option("CONFIG", options->config_path, "TOML config file")->required();
+  AddSetOption(keys_command, &options->overrides);
+  keys_command->add_option("--class", options->key_class, "Only keys of this class")
+      ->type_name("CLASS")
+      ->check(CLI::IsMember({"physical", "measurement", "solver", "run", "interface"}));
+  keys_command->add_flag("--json", options->json, "JSON on stdout instead of the table");
+  return {keys_command, [options] { return RunKeysCommand(*options); }};
 }
 
 }  // namespace ambdrop

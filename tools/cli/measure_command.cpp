@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,7 @@
 #include "io/config/config_loader.hpp"
 #include "io/files/json_writer.hpp"
 #include "io/files/measured_csv.hpp"
+#include "tools/cli/cli_registry.hpp"
 #include "tools/cli/command_config.hpp"
 #include "tools/cli/exit_codes.hpp"
 #include "tools/cli/progress_bar.hpp"
@@ -141,6 +143,69 @@ int RunMeasureCommand(const MeasureCommandOptions& options) {
   }
   std::fflush(stdout);
   return kExitOk;
+}
+
+RegisteredCommand AddMeasureCommand(CLI::App& app) {
+  auto options = std::make_shared<MeasureCommandOptions>();
+  CLI::App* measure_command = app.add_subcommand(
+      "measure",
+      "Make a measured-like record (CSV) from a truth rig: sensor readings, coil currents, TDB "
+      "loads and speeds, with noise, for testing `fit`");
+  measure_command->add_option("TRUTH_CONFIG", options->config_path, "TOML config of the truth rig")
+      ->required();
+  measure_command->add_option("--out", options->out_path, "The record to write")
+      ->type_name("FILE.csv")
+      ->required();
+  AddSetOption(measure_command, &options->overrides);
+  measure_command
+      ->add_option("--rate-Hz", options->rate_Hz,
+                   "Sample rate, a whole number of physics steps per sample (default: the "
+                   "config's controller.rate_Hz)")
+      ->type_name("R")
+      ->check(kFinite & CLI::PositiveNumber);
+  measure_command
+      ->add_option("--channels", options->channels,
+                   "Comma list of channel groups: displacement, current, tdb_normal_force, "
+                   "tdb_speed, rotor_speed, controller_command, tdb_support_force")
+      ->type_name("LIST")
+      ->capture_default_str();
+  measure_command
+      ->add_option("--measurement-toml", options->measurement_toml_path,
+                   "Also write the [measurement] table that maps the record's columns, for an "
+                   "analysed config")
+      ->type_name("FILE");
+  measure_command
+      ->add_option("--current-noise-A", options->current_noise_A,
+                   "Standard deviation of the noise added to the currents (A)")
+      ->type_name("S")
+      ->check(kFinite & CLI::NonNegativeNumber)
+      ->capture_default_str();
+  measure_command
+      ->add_option("--force-noise-N", options->force_noise_N,
+                   "Standard deviation of the noise added to the TDB normal forces (N)")
+      ->type_name("S")
+      ->check(kFinite & CLI::NonNegativeNumber)
+      ->capture_default_str();
+  measure_command
+      ->add_option("--speed-noise-rad-s", options->speed_noise_rad_s,
+                   "Standard deviation of the noise added to the TDB and rotor speeds (rad/s)")
+      ->type_name("S")
+      ->check(kFinite & CLI::NonNegativeNumber)
+      ->capture_default_str();
+  measure_command
+      ->add_option("--seed", options->seed,
+                   "Seed of the added noise (the sensors' noise keeps the config's seeds)")
+      ->type_name("N")
+      ->capture_default_str();
+  measure_command
+      ->add_option("--from-s", options->from_s,
+                   "Leave out the rows before this run time (t stays run time)")
+      ->type_name("T0")
+      ->check(kFinite & CLI::NonNegativeNumber)
+      ->capture_default_str();
+  measure_command->add_flag("--quiet,-q", options->quiet,
+                            "No summary on stdout and no progress bar");
+  return {measure_command, [options] { return RunMeasureCommand(*options); }};
 }
 
 }  // namespace ambdrop

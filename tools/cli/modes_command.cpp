@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <exception>
 #include <filesystem>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 
 #include "io/config/config_loader.hpp"
 #include "io/files/json_writer.hpp"
 #include "rt_core/modal_analysis.hpp"
+#include "tools/cli/cli_registry.hpp"
 #include "tools/cli/command_config.hpp"
 #include "tools/cli/exit_codes.hpp"
 
@@ -107,6 +109,32 @@ int RunModesCommand(const ModesOptions& options) {
   PrintTable(modes);
   fmt::print("wrote {}\n", json_path.string());
   return kExitOk;
+}
+
+RegisteredCommand AddModesCommand(CLI::App& app) {
+  auto options = std::make_shared<ModesOptions>();
+  auto speed_rpm = std::make_shared<double>(0.0);
+  CLI::App* modes_command = app.add_subcommand(
+      "modes", "Natural frequencies: free-free, supported at speed, reduced model at speed");
+  modes_command->add_option("CONFIG", options->config_path, "TOML config file")->required();
+  CLI::Option* speed_option =
+      modes_command
+          ->add_option("--speed-rpm", *speed_rpm,
+                       "Spin speed in rpm (default: the config's simulation.spin_speed_rad_s)")
+          ->type_name("R")
+          ->check(kFinite & CLI::Range(-1e7, 1e7));
+  modes_command->add_option("--count", options->count, "Frequencies per list at most")
+      ->type_name("N")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  AddSetOption(modes_command, &options->overrides);
+  modes_command->add_option("--out", options->out_dir, "Output directory")
+      ->type_name("DIR")
+      ->capture_default_str();
+  return {modes_command, [options, speed_rpm, speed_option] {
+            if (speed_option->count() > 0) options->speed_rpm = *speed_rpm;
+            return RunModesCommand(*options);
+          }};
 }
 
 }  // namespace ambdrop

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <exception>
 #include <filesystem>
+#include <memory>
 #include <optional>
 
 #include "controller_if/loop/replay_run.hpp"
@@ -12,6 +13,7 @@
 #include "io/files/json_writer.hpp"
 #include "io/files/timeseries_csv.hpp"
 #include "rt_core/model.hpp"
+#include "tools/cli/cli_registry.hpp"
 #include "tools/cli/exit_codes.hpp"
 #include "tools/record/candump_record.hpp"
 #include "tools/record/profile_export.hpp"
@@ -280,6 +282,62 @@ int RunReplayCommand(const ReplayOptions& options) {
     return kExitRunFailed;
   }
   return kExitOk;
+}
+
+RegisteredCommand AddReplayCommand(CLI::App& app) {
+  auto options = std::make_shared<ReplayOptions>();
+  CLI::App* replay_command = app.add_subcommand(
+      "replay", "Re-run a recorded run offline from its inputs and compare with the record");
+  replay_command->add_option("RECORD", options->record_path, "LCM event log from --record")
+      ->required();
+  replay_command->add_option("--config", options->config_path,
+                             "Replay with this config instead of the recorded one (reports the "
+                             "differences)");
+  replay_command->add_flag("--strict", options->strict,
+                           "Exit 4 unless every recorded sensor sample is reproduced within "
+                           "--tolerance-m (by value: -0 equals 0)");
+  replay_command
+      ->add_option("--tolerance-m", options->tolerance_m,
+                   "Tolerance of --strict (m); default 0 for an ambdrop record, half the frame "
+                   "map's coarsest sensor count for a candump log")
+      ->check(kFinite & CLI::NonNegativeNumber)
+      ->type_name("M");
+  replay_command
+      ->add_option("--align", options->align,
+                   "How a candump log's frames are placed at steps: time (receive times, a live "
+                   "run) or sequence (the k-th sensor frame is the k-th exchange: a lock-step "
+                   "capture)")
+      ->check(CLI::IsMember({"time", "sequence"}))
+      ->capture_default_str();
+  replay_command->add_option("--out", options->out_dir, "Output directory")
+      ->type_name("DIR")
+      ->capture_default_str();
+  AddSetOption(replay_command, &options->overrides);
+  replay_command->add_flag("--quiet,-q", options->quiet, "No report on stdout");
+  CLI::Option* export_profile =
+      replay_command
+          ->add_option("--export-profile", options->export_profile_path,
+                       "Instead of replaying, write the recorded coil currents as a rig config "
+                       "driven by current profiles ([controller] kind = \"none\"), for "
+                       "`ambdrop sim` or a scenario's base")
+          ->type_name("FILE.toml");
+  replay_command
+      ->add_option("--profile-points", options->profile.max_points,
+                   "At most this many points per AMB profile")
+      ->check(CLI::Range(2, 1024))
+      ->needs(export_profile)
+      ->capture_default_str();
+  replay_command
+      ->add_option("--profile-from", options->profile.from_s,
+                   "Export from this record time (s); the profile starts there at 0 s")
+      ->check(kFinite & CLI::NonNegativeNumber)
+      ->needs(export_profile)
+      ->capture_default_str();
+  replay_command
+      ->add_option("--profile-to", options->profile.to_s, "Export up to this record time (s)")
+      ->check(kFinite & CLI::PositiveNumber)
+      ->needs(export_profile);
+  return {replay_command, [options] { return RunReplayCommand(*options); }};
 }
 
 }  // namespace ambdrop

@@ -22,6 +22,7 @@
 #include "io/files/json_writer.hpp"
 #include "io/files/timeseries_csv.hpp"
 #include "rt_core/model.hpp"
+#include "tools/cli/cli_registry.hpp"
 #include "tools/cli/command_config.hpp"
 #include "tools/cli/exit_codes.hpp"
 #include "tools/cli/long_run_note.hpp"
@@ -271,6 +272,46 @@ int RunSimCommand(const SimOptions& options) {
     return kExitRunFailed;
   }
   return output_error.empty() ? kExitOk : kExitError;
+}
+
+RegisteredCommand AddSimCommand(CLI::App& app) {
+  auto options = std::make_shared<SimOptions>();
+  CLI::App* sim_command = app.add_subcommand(
+      "sim", "Simulate a rotor drop offline; write timeseries.csv and summary.json");
+  CLI::Option* sim_config =
+      sim_command->add_option("CONFIG", options->config_path, "TOML config file");
+  CLI::Option* sim_scenario =
+      sim_command
+          ->add_option("--scenario", options->scenario_path,
+                       "Run a scripted shutdown: a scenario file (a rig config with a [scenario] "
+                       "table; configs/scenarios/); exits 4 if an expected outcome fails")
+          ->type_name("FILE");
+  sim_config->excludes(sim_scenario);
+  sim_command->callback([sim_config, sim_scenario] {
+    if (sim_config->count() == 0 && sim_scenario->count() == 0) {
+      throw CLI::RequiredError("CONFIG or --scenario");
+    }
+  });
+  sim_command->add_option("--out", options->out_dir, "Output directory")
+      ->type_name("DIR")
+      ->capture_default_str();
+  AddSetOption(sim_command, &options->overrides);
+  sim_command->add_flag("--quiet,-q", options->quiet, "No summary on stdout and no progress bar");
+  sim_command->add_flag("--amb-currents", options->amb_currents,
+                        "timeseries.csv: every AMB's commanded and coil currents per axis "
+                        "(amb_<name>_x_command_A, ..., amb_<name>_y_coil_A) as the last columns");
+  sim_command
+      ->add_option("--junit", options->junit_path,
+                   "With --scenario: write the run's checks and the scenario's expectations as "
+                   "JUnit XML")
+      ->type_name("FILE")
+      ->needs(sim_scenario);
+  sim_command
+      ->add_option("--record", options->record_path,
+                   "Record the run (inputs, power events, sensor samples, state) into an LCM "
+                   "event log for `ambdrop replay`")
+      ->type_name("FILE.lcm");
+  return {sim_command, [options] { return RunSimCommand(*options); }};
 }
 
 }  // namespace ambdrop

@@ -7,8 +7,10 @@
 #include <cmath>
 #include <exception>
 #include <filesystem>
+#include <memory>
 
 #include "io/files/json_writer.hpp"
+#include "tools/cli/cli_registry.hpp"
 #include "tools/cli/exit_codes.hpp"
 #include "tools/validation/validation_cases.hpp"
 
@@ -120,6 +122,25 @@ int RunValidateCommand(const ValidateOptions& options) {
     return kExitError;
   }
   return kExitOk;
+}
+
+RegisteredCommand AddValidateCommand(CLI::App& app) {
+  auto options = std::make_shared<ValidateOptions>();
+  CLI::App* validate_command = app.add_subcommand(
+      "validate", "Run every seed paper's case and compare with its published numbers");
+  validate_command->add_option("--out", options->out_dir, "Output directory (options->json)")
+      ->type_name("DIR")
+      ->capture_default_str();
+  validate_command->add_option("--configs", options->configs_dir, "The seed rigs' config folder")
+      ->type_name("DIR")
+      ->capture_default_str();
+  validate_command->add_option("--case", options->cases, "Run only this case (repeatable)")
+      ->type_name("NAME");
+  validate_command->add_flag("--allow-known-failures", options->allow_known_failures,
+                             "Checks marked as known failures (open issues) do not fail the exit "
+                             "code; they are still reported");
+  validate_command->add_flag("--quiet,-q", options->quiet, "No table on stdout");
+  return {validate_command, [options] { return RunValidateCommand(*options); }};
 }
 
 }  // namespace ambdrop
