@@ -34,6 +34,26 @@ TEST(ConfigSeedTdbs, SlipSpeedsDefaultToTheContactPoint) {
   EXPECT_EQ(literal.tdbs[1].ball_bearing.friction.slip_speeds, SlipSpeeds::kSpinOnly);
 }
 
+// The ball-bearing TDB's journal friction is its own table; of the common [friction] it reads
+// only the regularisation its races' load torque shares, so the other keys are errors there,
+// not values silently ignored.
+TEST(ConfigSeedTdbs, BallBearingTdbRejectsTheFrictionKeysItDoesNotRead) {
+  const std::string rig = "chen_itri_flexible.toml";
+  for (const char* key : {"coefficient=0.9", "law=\"none\"", "whirl_damping_N_s_per_m=5.0"}) {
+    EXPECT_THAT(
+        ErrorOf(rig, {std::string("tdb.front.friction.") + key}),
+        AllOf(HasSubstr("key 'tdb.front.friction."), HasSubstr("[ball_bearing_tdb.friction]")))
+        << key;
+  }
+  const ModelParams p =
+      LoadConfig(testing::ConfigPath(rig), {"tdb.front.friction.regularisation_s_per_m=500"})
+          .params;
+  EXPECT_EQ(p.tdbs[0].name, "front");
+  EXPECT_EQ(p.tdbs[0].friction.regularisation_s_per_m, 500.0);
+  // The catcher bearing reads the whole [friction] table (its journal contact is the common one).
+  EXPECT_EQ(ErrorOf("ddcb_rigid.toml", {"tdb.left.friction.coefficient=0.2"}), "no error");
+}
+
 TEST(ConfigSeedTdbs, BallBearingTdbErrorsNameKeyAndExpectation) {
   const std::string rig = "chen_itri_flexible.toml";
   EXPECT_THAT(ErrorOf(rig, {"tdb.front.ball_bearing_tdb.line_contact.lenght_m=0.01"}),

@@ -282,6 +282,19 @@ TdbParams ReadTdb(const std::string& name, const TableReader& table, const Axial
                  "no [spin] table with model = \"catcher_bearing\" (its races' inertias "
                  "and friction moments are in [catcher_bearing])");
   }
+  if (tdb.model == TdbModelKind::kBallBearing) {
+    // Its journal/race friction is [ball_bearing_tdb.friction]; of [friction] it reads only the
+    // regularisation its races' load torque shares (RaceAcceleration), so the rest would be
+    // accepted and ignored.
+    if (const auto friction = table.OptionalTable("friction")) {
+      for (const std::string_view key : {"law", "coefficient", "whirl_damping_N_s_per_m"}) {
+        friction->Reject(key,
+                         "no key here: model = \"ball_bearing_tdb\" takes its friction from "
+                         "[ball_bearing_tdb.friction], and of [friction] only "
+                         "regularisation_s_per_m, the races' load torque regularisation");
+      }
+    }
+  }
   tdb.friction = ReadFriction(table);
   tdb.spin = ReadSpin(table);
   tdb.misalignment = ReadMisalignment(table);
