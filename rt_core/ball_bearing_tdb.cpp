@@ -77,31 +77,22 @@ void BallBearingTdb::Evaluate(const JournalMotion& j, const double* s, double* r
     ovy = s[kOuterVy];
   }
   // Journal / inner race deflection, Chen 2019 (seed 002) Eq. (6); normal n from the race
-  // centre to the journal (the force on the rotor is along -n, Eq. (7)-(8)).
-  const ContactGeometry g = JournalGeometry(p, j, {ix, iy, ivx, ivy});
-  const double deflection = g.radius_m - p.clearance_m;
-  *out = TdbForce{};
-  out->penetration_m = deflection;
-  out->tdb_spin_rad_s = race_speed;
-  double normal = 0.0;
-  double friction = 0.0;
-  double on_rotor_x = 0.0, on_rotor_y = 0.0;
-  if (deflection > 0.0) {
-    // Chen 2019 (seed 002), Eq. (5)
-    normal = LineContactForce(b.line_contact, p.clearance_m, deflection);
-    // Chen 2019 (seed 002), Eq. (9)-(12): on the race along the slip, on the rotor against it.
-    const double slip = b.friction.slip_speeds == SlipSpeeds::kSpinOnly
-                            ? SpinSurfaceSlip(p, j, race_speed)
-                            : SurfaceSlip(p, j, g, race_speed);
-    friction = SlipFrictionForce(b.friction, normal, slip);
-    // Chen 2019 (seed 002), Eq. (2)-(3), (8)
-    ForceOnRotor(g, normal, -friction, &on_rotor_x, &on_rotor_y);
-    out->torque_on_rotor_N_m = -friction * p.journal_radius_m;
-  }
-  out->fx_N = on_rotor_x;
-  out->fy_N = on_rotor_y;
-  out->normal_force_N = normal;
-  out->tangential_force_N = friction;
+  // centre to the journal (the force on the rotor is along -n, Eq. (7)-(8)); no whirl damping.
+  const JournalContact contact = TouchJournal(
+      p, j, {ix, iy, ivx, ivy}, race_speed, 0.0,
+      [&](double deflection, const ContactGeometry&) {
+        return LineContactForce(b.line_contact, p.clearance_m, deflection);  // Chen 2019, Eq. (5)
+      },
+      [&](double normal, const ContactGeometry& g) {
+        // Chen 2019 (seed 002), Eq. (9)-(12): on the race along the slip, on the rotor against it.
+        const double slip = b.friction.slip_speeds == SlipSpeeds::kSpinOnly
+                                ? SpinSurfaceSlip(p, j, race_speed)
+                                : SurfaceSlip(p, j, g, race_speed);
+        return SlipFrictionForce(b.friction, normal, slip);
+      },
+      out);
+  const double friction = contact.friction_N;
+  const double on_rotor_x = contact.on_rotor_x_N, on_rotor_y = contact.on_rotor_y_N;
 
   // Balls and Cb between the races, Chen 2019 (seed 002) Eq. (13)-(19), Fig. 2.
   double bearing_x = 0.0, bearing_y = 0.0;  // on the inner race

@@ -108,28 +108,19 @@ void CatcherBearingTdb::Evaluate(const JournalMotion& j, const double* s, double
   const double ix = s[kX], iy = s[kY], ivx = s[kVx], ivy = s[kVy];
 
   // Journal / inner race: penetration beyond the clearance, normal n from the race centre.
-  const ContactGeometry g = JournalGeometry(p, j, {ix, iy, ivx, ivy});
-  const double penetration = g.radius_m - p.clearance_m;
-  *out = TdbForce{};
-  out->penetration_m = penetration;
-  out->tdb_spin_rad_s = wi;
-  double normal = 0.0;
-  double friction = 0.0;
-  double on_rotor_x = 0.0, on_rotor_y = 0.0;
+  const JournalContact contact = TouchJournal(
+      p, j, {ix, iy, ivx, ivy}, wi, p.friction.whirl_damping_N_s_per_m,
+      [&c](double penetration, const ContactGeometry& g) {
+        return ImpactForce(c.impact, penetration, g.radial_speed_m_s);  // Seed 003, Eq. (1)
+      },
+      [&](double normal, const ContactGeometry& g) {
+        return FrictionForce(p.friction, normal,
+                             SurfaceSlip(p, j, g, wi));  // Jarroux 2019, Eq. (11)
+      },
+      out);
+  const double friction = contact.friction_N;
+  const double on_rotor_x = contact.on_rotor_x_N, on_rotor_y = contact.on_rotor_y_N;
   const double inner_race_radius = InnerRaceRadius(p);  // Rb
-  if (penetration > 0.0) {
-    // Seed 003, Eq. (1)
-    normal = ImpactForce(c.impact, penetration, g.radial_speed_m_s);
-    // Jarroux 2019, Eq. (11)
-    friction = FrictionForce(p.friction, normal, SurfaceSlip(p, j, g, wi));
-    ForceOnRotor(g, normal, -friction - p.friction.whirl_damping_N_s_per_m * g.whirl_speed_m_s,
-                 &on_rotor_x, &on_rotor_y);
-    out->torque_on_rotor_N_m = -friction * p.journal_radius_m;
-  }
-  out->fx_N = on_rotor_x;
-  out->fy_N = on_rotor_y;
-  out->normal_force_N = normal;
-  out->tangential_force_N = friction;
 
   // The house (metal rubber ring) or the rigid ground.
   Ring house;

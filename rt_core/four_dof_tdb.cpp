@@ -64,27 +64,18 @@ void FourDofTdb::Evaluate(const JournalMotion& j, const double* s, double* rate,
   const double ix = s[kInnerX], iy = s[kInnerY], ivx = s[kInnerVx], ivy = s[kInnerVy];
   const double ox = s[kOuterX], oy = s[kOuterY], ovx = s[kOuterVx], ovy = s[kOuterVy];
   // Journal / inner race: penetration beyond the clearance, normal n from the race centre.
-  const ContactGeometry g = JournalGeometry(p, j, {ix, iy, ivx, ivy});
-  const double urs = g.radius_m - p.clearance_m;
-  *out = TdbForce{};
-  out->penetration_m = urs;
-  out->tdb_spin_rad_s = race_speed;
-  double normal = 0.0;
-  double friction = 0.0;
-  double on_rotor_x = 0.0, on_rotor_y = 0.0;
-  if (urs > 0.0) {
-    // Jarroux 2019, Eq. (10)
-    normal = HuntCrossleyForce(f.inner_contact, urs, g.radial_speed_m_s);
-    // Jarroux 2019, Eq. (11)
-    friction = FrictionForce(p.friction, normal, SurfaceSlip(p, j, g, race_speed));
-    ForceOnRotor(g, normal, -friction - p.friction.whirl_damping_N_s_per_m * g.whirl_speed_m_s,
-                 &on_rotor_x, &on_rotor_y);
-    out->torque_on_rotor_N_m = -friction * p.journal_radius_m;
-  }
-  out->fx_N = on_rotor_x;
-  out->fy_N = on_rotor_y;
-  out->normal_force_N = normal;
-  out->tangential_force_N = friction;
+  const JournalContact contact = TouchJournal(
+      p, j, {ix, iy, ivx, ivy}, race_speed, p.friction.whirl_damping_N_s_per_m,
+      [&f](double urs, const ContactGeometry& g) {
+        return HuntCrossleyForce(f.inner_contact, urs,
+                                 g.radial_speed_m_s);  // Jarroux 2019, Eq. (10)
+      },
+      [&](double normal, const ContactGeometry& g) {
+        return FrictionForce(p.friction, normal, SurfaceSlip(p, j, g, race_speed));  // Eq. (11)
+      },
+      out);
+  const double friction = contact.friction_N;
+  const double on_rotor_x = contact.on_rotor_x_N, on_rotor_y = contact.on_rotor_y_N;
 
   // Ball bearing between the races, Jarroux 2019 Eq. (5)-(8).
   double bearing_x = 0.0, bearing_y = 0.0;  // on the inner race

@@ -79,6 +79,41 @@ inline void ForceOnRotor(const ContactGeometry& g, double normal_N, double tange
   *fy_N = -normal_N * g.ny + tangential_N * g.nx;
 }
 
+/// The journal / inner-race contact as the 4-DOF, catcher-bearing and ball-bearing TDBs share it:
+/// penetration beyond the clearance along n from the race centre, the kind's normal law
+/// `normal(penetration_m, g)` and friction law `friction(normal_N, g)` (force on the race along
+/// +spin), the force on the rotor against both plus the whirl damping, the torque on the rotor.
+struct JournalContact {
+  ContactGeometry g;
+  double normal_N = 0.0;
+  double friction_N = 0.0;
+  double on_rotor_x_N = 0.0, on_rotor_y_N = 0.0;
+};
+template <class NormalLaw, class FrictionLaw>
+inline JournalContact TouchJournal(const TdbParams& p, const JournalMotion& j,
+                                   const RaceMotion& race, double race_speed_rad_s,
+                                   double whirl_damping_N_s_per_m, NormalLaw normal,
+                                   FrictionLaw friction, TdbForce* out) noexcept {
+  JournalContact c;
+  c.g = JournalGeometry(p, j, race);
+  const double penetration = c.g.radius_m - p.clearance_m;
+  *out = TdbForce{};
+  out->penetration_m = penetration;
+  out->tdb_spin_rad_s = race_speed_rad_s;
+  if (penetration > 0.0) {
+    c.normal_N = normal(penetration, c.g);
+    c.friction_N = friction(c.normal_N, c.g);
+    ForceOnRotor(c.g, c.normal_N, -c.friction_N - whirl_damping_N_s_per_m * c.g.whirl_speed_m_s,
+                 &c.on_rotor_x_N, &c.on_rotor_y_N);
+    out->torque_on_rotor_N_m = -c.friction_N * p.journal_radius_m;
+  }
+  out->fx_N = c.on_rotor_x_N;
+  out->fy_N = c.on_rotor_y_N;
+  out->normal_force_N = c.normal_N;
+  out->tangential_force_N = c.friction_N;
+  return c;
+}
+
 /// Friction force on the race along +spin for a slip speed (journal surface minus race surface).
 inline double FrictionForce(const FrictionParams& f, double normal_force_N,
                             double slip_speed_m_s) noexcept {
