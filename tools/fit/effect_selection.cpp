@@ -665,41 +665,44 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   // the right one, fitted on the drop's start, may send a chaotic rest elsewhere (a hold-then-
   // fade law on the rigid rig took the whole record from 0.078 to 0.36), which the verdict's
   // check of every part reports.
-  const auto harm = [&](const EffectFit& f, const EffectFit& reference) -> std::string {
-    if (others.empty()) return {};
-    const SimulatedRecord sim = fitted_run(f);
-    const SimulatedRecord ref = fitted_run(reference);
+  // The first part not judged that `sim` takes beyond the larger of its limit and `reference`
+  // (the residual something else leaves there), widened by twice the part's model floor (a
+  // chaotic part moves by that under any change); `say` words it. "" when none.
+  const auto departs = [&](const SimulatedRecord& sim, const auto& reference,
+                           const auto& say) -> std::string {
     for (const PartOf& p : others) {
       const double after = OverallRms(*p.cost, p.cost->Residual(sim).squaredNorm());
-      const double alone = OverallRms(*p.cost, p.cost->Residual(ref).squaredNorm());
+      const double before = reference(p);
       const double floor = std::max(p.part->step_sensitivity, p.part->start_sensitivity);
       const double allowed =
-          std::hypot(std::max(p.part->limit, alone), rules.model_floor_factor * floor);
-      if (after > allowed) {
-        return fmt::format(
-            "it takes the residual {} to {:.3g}, where the first effect alone leaves {:.3g} "
-            "(allowed {:.3g})",
-            p.phrase, after, alone, allowed);
-      }
+          std::hypot(std::max(p.part->limit, before), rules.model_floor_factor * floor);
+      if (after > allowed) return say(p, before, after, allowed);
     }
     return {};
+  };
+  const auto harm = [&](const EffectFit& f, const EffectFit& first) -> std::string {
+    if (others.empty()) return {};
+    const SimulatedRecord alone = fitted_run(first);
+    return departs(
+        fitted_run(f),
+        [&](const PartOf& p) { return OverallRms(*p.cost, p.cost->Residual(alone).squaredNorm()); },
+        [](const PartOf& p, double before, double after, double allowed) {
+          return fmt::format(
+              "it takes the residual {} to {:.3g}, where the first effect alone leaves {:.3g} "
+              "(allowed {:.3g})",
+              p.phrase, after, before, allowed);
+        });
   };
   // A single effect refuted by a part not judged: it takes that part beyond both its limit and
   // what the declared model leaves there, by more than the part's own model floor allows.
   const auto refuted = [&](const EffectFit& f) -> std::string {
     if (others.empty()) return {};
-    const SimulatedRecord sim = fitted_run(f);
-    for (const PartOf& p : others) {
-      const double after = OverallRms(*p.cost, p.cost->Residual(sim).squaredNorm());
-      const double floor = std::max(p.part->step_sensitivity, p.part->start_sensitivity);
-      const double allowed =
-          std::hypot(std::max(p.part->limit, p.part->rms_before), rules.model_floor_factor * floor);
-      if (after > allowed) {
-        return fmt::format("it takes the residual {} from {:.3g} to {:.3g} (allowed {:.3g})",
-                           p.phrase, p.part->rms_before, after, allowed);
-      }
-    }
-    return {};
+    return departs(
+        fitted_run(f), [](const PartOf& p) { return p.part->rms_before; },
+        [](const PartOf& p, double before, double after, double allowed) {
+          return fmt::format("it takes the residual {} from {:.3g} to {:.3g} (allowed {:.3g})",
+                             p.phrase, before, after, allowed);
+        });
   };
   s = SelectOn(declared, judged, on == "whole" && early_cost ? &*early_cost : nullptr,
                judged_before, library, std::move(s), at_floor, rules, harm, refuted);
