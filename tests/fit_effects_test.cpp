@@ -460,6 +460,58 @@ TEST(FitVerdicts, EquallyGoodEffectsOfAnotherFamilyAreNamed) {
   EXPECT_NE(s.reason.find("times its noise"), std::string::npos) << s.reason;
 }
 
+// Of two explanations the record cannot tell apart, the one with fewer parameters is named first:
+// the BIC counts every sample as independent, so a third parameter that takes up a small second
+// departure wins it by far although the overall residual barely moves. The truth here is the DE
+// TDB's offset plus a 1 % scale error of the DE sensor's y axis; the library offers the offset
+// alone (2 parameters) and the offset with that gain (3). Without the rule the second is chosen.
+TEST(FitVerdicts, TheSimplerOfTwoLookAlikesIsNamedFirst) {
+  std::vector<std::string> truth = Timing();
+  for (const char* o :
+       {"simulation.step_s=2.5e-6", "tdb.de.misalignment.enabled=true",
+        "tdb.de.misalignment.x_m=2e-5", "tdb.de.misalignment.y_m=-4e-5", "sensor.de.gain_y=0.99"}) {
+    truth.push_back(o);
+  }
+  MeasureOptions noise;
+  noise.current_noise_A = 0.005;
+  const SyntheticMeasurement made = MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), noise);
+  const ConfigVariants variants = testing::LoadTestVariants(kRig, Timing());
+  const RecordCost cost(variants.declared().params, made.measurement, made.record,
+                        RecordRunOptions{});
+  std::vector<Effect> library;
+  for (const Effect& e : EffectLibrary(variants)) {
+    if (e.name == "tdb_misalignment:de") library.push_back(e);
+  }
+  ASSERT_EQ(library.size(), 1u);
+  Effect padded = library.front();
+  padded.name = "misalignment_and_gain:de";
+  padded.family = "misalignment_and_gain";
+  padded.parameters.push_back({"gain_y", 0.9, 1.1, {1.0}});
+  padded.probe.push_back(1.05);
+  padded.overrides = [offset = library.front().overrides](const std::vector<double>& v) {
+    std::vector<std::string> o = offset({v[0], v[1]});
+    o.push_back("sensor.de.gain_y=" + std::to_string(v[2]));
+    return o;
+  };
+  library.push_back(padded);
+  SelectionRules rules;
+  rules.threads = 2;
+  const Selection s = SelectEffects(variants, cost, library, cost.NoiseFloor(), rules);
+  ASSERT_EQ(s.candidates.size(), 2u);
+  const CandidateScore& offset = s.candidates[0];
+  const CandidateScore& both = s.candidates[1];
+  std::printf("offset: rms %.4g bic %.1f; offset and gain: rms %.4g bic %.1f\n", offset.rms_after,
+              offset.bic, both.rms_after, both.bic);
+  // The case the rule is for: the BIC prefers the larger model, the residuals are look-alikes.
+  ASSERT_LT(both.bic, offset.bic);
+  ASSERT_LE(offset.rms_after, both.rms_after * rules.equivalent_margin);
+  ASSERT_FALSE(s.chosen.empty()) << s.reason;
+  EXPECT_EQ(s.chosen.front(), "tdb_misalignment:de") << s.reason;
+  ASSERT_EQ(s.equivalent.size(), 1u);
+  EXPECT_EQ(s.equivalent.front().name, "misalignment_and_gain:de");
+  EXPECT_NE(s.reason.find("simpler"), std::string::npos) << s.reason;
+}
+
 TEST(FitVerdicts, FittedPairsAreReportedAsTried) {
   // Both TDBs offset: no single offset explains the record, so pairs are fitted. Each pair
   // fitted must say so (fit.json's "tried", report.md's row), with the residual it reached.
