@@ -55,6 +55,20 @@ struct HilSensorReadings {
   std::array<std::array<std::int32_t, 2>, kMaxSensors> counts{};
 };
 
+/// A power event as the emulator applied it, announced on LCM (ambdrop_lcm::power_event_t).
+struct HilPowerEvent {
+  std::int64_t utime_us = 0;    ///< wall-clock time of the event, us since the Unix epoch
+  std::int64_t sequence = 0;    ///< 0 for a run's first event, +1 per event
+  std::int64_t step_index = 0;  ///< physics step the event applies at
+  double time_s = 0.0;          ///< simulated time of that step, s
+  bool power_on = false;        ///< false: the named coils lost power; true: restored
+  std::uint8_t amb_mask = 0;    ///< bit i: AMB i affected
+  std::uint8_t axis_mask = 0;   ///< kAxis* bits affected
+  bool motor = false;           ///< the drive too: a full failure (restore)
+  /// Per AMB after the event: kAxis* bits of the coils that have power.
+  std::array<std::uint8_t, kMaxAmbs> powered_axes{};
+};
+
 /// What one touchdown bearing reports in HilEmulatorState.
 struct HilTdbState {
   double normal_force_N = 0.0;      ///< rotor / inner-race normal force (>= 0), N

@@ -6,6 +6,7 @@
 
 #include <ambdrop_lcm/amb_currents_t.hpp>
 #include <ambdrop_lcm/emulator_state_t.hpp>
+#include <ambdrop_lcm/power_event_t.hpp>
 #include <ambdrop_lcm/sensor_readings_t.hpp>
 #include <ambdrop_lcm/trigger_t.hpp>
 #include <chrono>
@@ -70,8 +71,9 @@ void NameThread(std::thread* thread, const char* name) {
 
 LcmEndpoint::LcmEndpoint(LcmEndpointOptions options) : options_(std::move(options)) {
   const std::string* channels[] = {&options_.currents_channel, &options_.trigger_channel,
-                                   &options_.sensors_channel, &options_.state_channel};
-  for (int i = 0; i < 4; ++i) {
+                                   &options_.sensors_channel, &options_.state_channel,
+                                   &options_.power_channel};
+  for (int i = 0; i < 5; ++i) {
     if (channels[i]->empty()) throw std::invalid_argument("LCM channel names must not be empty");
     // A shared name would loop our own output back in as (malformed) input.
     for (int j = 0; j < i; ++j) {
@@ -105,6 +107,7 @@ LcmEndpoint::LcmEndpoint(LcmEndpointOptions options) : options_(std::move(option
   sensors_buffer_.resize(
       static_cast<std::size_t>(ambdrop_lcm::sensor_readings_t{}.getEncodedSize()));
   state_buffer_.resize(static_cast<std::size_t>(ambdrop_lcm::emulator_state_t{}.getEncodedSize()));
+  power_buffer_.resize(static_cast<std::size_t>(ambdrop_lcm::power_event_t{}.getEncodedSize()));
 }
 
 LcmEndpoint::~LcmEndpoint() {
@@ -179,6 +182,8 @@ LcmEndpointCounters LcmEndpoint::counters() const noexcept {
   c.states_published = states_published_.load(kRelaxed);
   c.sensors_ring_full = sensors_.dropped();
   c.states_ring_full = states_.dropped();
+  c.power_events_published = power_events_published_.load(kRelaxed);
+  c.power_events_ring_full = power_.dropped();
   c.publish_rejected = publish_rejected_.load(kRelaxed);
   c.publish_errors = publish_errors_.load(kRelaxed);
   c.receive_errors = receive_errors_.load(kRelaxed);
@@ -278,11 +283,13 @@ void LcmEndpoint::HandleTrigger(const void* data, std::size_t size) noexcept {
 void LcmEndpoint::PublishLoop() noexcept {
   HilSensorReadings readings;
   HilEmulatorState state;
+  HilPowerEvent power;
   while (true) {
     // Read the signal before draining: a push after the drain bumps it and the wait returns.
     const std::uint32_t seen = publish_signal_.load(std::memory_order_acquire);
     const bool stopping = stop_.load(std::memory_order_acquire);
     while (sensors_.TryPop(&readings)) PublishSensors(readings);
+    while (power_.TryPop(&power)) PublishPowerEvent(power);
     while (states_.TryPop(&state)) PublishState(state);
     if (stopping) return;  // everything pushed before Stop has been published
     if (options_.publish_poll_period.count() > 0) {
@@ -351,6 +358,23 @@ void LcmEndpoint::PublishState(const HilEmulatorState& state) noexcept {
   msg.fault_count = state.fault_count;
   const bool ok = EncodeAndPublish(msg, options_.state_channel, lcm_.get(), &state_buffer_);
   (ok ? states_published_ : publish_errors_).fetch_add(1, std::memory_order_relaxed);
+}
+
+void LcmEndpoint::PublishPowerEvent(const HilPowerEvent& event) noexcept {
+  ambdrop_lcm::power_event_t msg{};
+  msg.utime = event.utime_us;
+  msg.sequence = event.sequence;
+  msg.step_index = event.step_index;
+  msg.time_s = event.time_s;
+  msg.power_on = event.power_on ? 1 : 0;
+  msg.amb_mask = static_cast<std::int8_t>(event.amb_mask & kAllAmbs);
+  msg.axis_mask = static_cast<std::int8_t>(event.axis_mask & kAllAxes);
+  msg.motor = event.motor ? 1 : 0;
+  for (int i = 0; i < kMaxAmbs; ++i) {
+    msg.powered_axes[i] = static_cast<std::int8_t>(event.powered_axes[i] & kAllAxes);
+  }
+  const bool ok = EncodeAndPublish(msg, options_.power_channel, lcm_.get(), &power_buffer_);
+  (ok ? power_events_published_ : publish_errors_).fetch_add(1, std::memory_order_relaxed);
 }
 
 }  // namespace ambdrop

@@ -28,6 +28,7 @@ struct LcmEndpointOptions {
   std::string trigger_channel = "AMBDROP_TRIGGER";    ///< in: ambdrop_lcm::trigger_t
   std::string sensors_channel = "AMBDROP_SENSORS";    ///< out: ambdrop_lcm::sensor_readings_t
   std::string state_channel = "AMBDROP_STATE";        ///< out: ambdrop_lcm::emulator_state_t
+  std::string power_channel = "AMBDROP_POWER";        ///< out: ambdrop_lcm::power_event_t
   /// Longest wait of one lcm.handleTimeout call of the receive thread: it bounds how long Stop
   /// waits for that thread, not the receive latency (a message wakes it at once).
   std::chrono::milliseconds receive_timeout{20};
@@ -61,9 +62,11 @@ struct LcmEndpointCounters {
   std::uint64_t states_published = 0;
   std::uint64_t sensors_ring_full = 0;  ///< TryPushSensors refused: the publish thread lagged
   std::uint64_t states_ring_full = 0;   ///< TryPushState refused: the publish thread lagged
-  std::uint64_t publish_rejected = 0;   ///< records with counts out of range, not published
-  std::uint64_t publish_errors = 0;     ///< lcm publish calls that failed
-  std::uint64_t receive_errors = 0;     ///< lcm handleTimeout calls that failed
+  std::uint64_t power_events_published = 0;
+  std::uint64_t power_events_ring_full = 0;  ///< TryPushPowerEvent refused
+  std::uint64_t publish_rejected = 0;        ///< records with counts out of range, not published
+  std::uint64_t publish_errors = 0;          ///< lcm publish calls that failed
+  std::uint64_t receive_errors = 0;          ///< lcm handleTimeout calls that failed
 };
 
 /// The LCM side of the HIL link, kept off the real-time thread.
@@ -87,6 +90,7 @@ class LcmEndpoint {
   static constexpr std::size_t kTriggerCapacity = 16;
   static constexpr std::size_t kSensorsCapacity = 256;  ///< output intervals buffered
   static constexpr std::size_t kStateCapacity = 64;
+  static constexpr std::size_t kPowerCapacity = 16;
 
   /// Creates the lcm::LCM for options.url and subscribes. Throws std::invalid_argument for
   /// empty or repeated channel names, std::runtime_error when LCM rejects the URL.
@@ -126,6 +130,12 @@ class LcmEndpoint {
     if (pushed) WakePublisher();
     return pushed;
   }
+  /// Queues a power event for publishing. False (counted) when the ring is full.
+  bool TryPushPowerEvent(const HilPowerEvent& event) noexcept {
+    const bool pushed = power_.TryPush(event);
+    if (pushed) WakePublisher();
+    return pushed;
+  }
 
   // --- Any thread -------------------------------------------------------------------------
   LcmEndpointCounters counters() const noexcept;
@@ -143,6 +153,7 @@ class LcmEndpoint {
   void HandleTrigger(const void* data, std::size_t size) noexcept;
   void PublishSensors(const HilSensorReadings& readings) noexcept;
   void PublishState(const HilEmulatorState& state) noexcept;
+  void PublishPowerEvent(const HilPowerEvent& event) noexcept;
   void WakePublisher() noexcept {
     if (options_.publish_poll_period.count() > 0) return;
     publish_signal_.fetch_add(1, std::memory_order_release);
@@ -153,11 +164,13 @@ class LcmEndpoint {
   std::unique_ptr<lcm::LCM> lcm_;
   std::vector<std::uint8_t> sensors_buffer_;  ///< encoded sensor_readings_t (fixed size)
   std::vector<std::uint8_t> state_buffer_;    ///< encoded emulator_state_t (fixed size)
+  std::vector<std::uint8_t> power_buffer_;    ///< encoded power_event_t (fixed size)
 
   SpscRing<HilCurrents, kCurrentsCapacity> currents_;
   SpscRing<HilTrigger, kTriggerCapacity> triggers_;
   SpscRing<HilSensorReadings, kSensorsCapacity> sensors_;
   SpscRing<HilEmulatorState, kStateCapacity> states_;
+  SpscRing<HilPowerEvent, kPowerCapacity> power_;
 
   std::atomic<bool> stop_{false};
   std::atomic<std::uint32_t> publish_signal_{0};  ///< bumped per push; the publisher waits on it
@@ -179,6 +192,7 @@ class LcmEndpoint {
   // Publish-thread counters.
   std::atomic<std::uint64_t> sensors_published_{0};
   std::atomic<std::uint64_t> states_published_{0};
+  std::atomic<std::uint64_t> power_events_published_{0};
   std::atomic<std::uint64_t> publish_rejected_{0};
   std::atomic<std::uint64_t> publish_errors_{0};
 };

@@ -24,9 +24,14 @@ unshare -n bash -c "
   ip link set lo up
   ip route add 239.0.0.0/8 dev lo
   '$controller' '$config' ${sets[*]} --idle-exit-s 1 > '$work/controller.log' 2>&1 &
+  # A monitor: LCM's own logger on the live state and power channels.
+  lcm-logger -q -f -c 'AMBDROP_(STATE|POWER)' '$work/live.lcm' &
+  logger=\$!
   sleep 0.5
   '$tool' hil '$config' --controller lcm ${sets[*]} --set simulation.duration_s=0.4 \
     --rt-priority 80 --lcm-io-fifo --out '$work/out' --record '$work/run.lcm' --quiet
+  sleep 0.3
+  kill -INT \$logger
   wait
   # 20 kHz in lock step on the virtual clock: the same controller process answers every sample.
   '$controller' '$config' --idle-exit-s 1 > '$work/controller20k.log' 2>&1 &
@@ -62,6 +67,37 @@ grep -q '"lockstep_timeouts": 0' "$work/lockstep/summary.json" || {
   exit 1
 }
 echo "20 kHz lock step over LCM udpm: byte-identical to ambdrop sim"
+# The run live on udpm as a monitor saw it (lcm-logger): AMBDROP_STATE every 10 ms of simulated
+# time (the default --state-interval-s) and at once after the failure, AMBDROP_POWER once, at the
+# scheduled trigger's step, with no coil powered after it.
+python3 - "$work/live.lcm" "$work/out/summary.json" <<'PY'
+import json, struct, sys
+data = open(sys.argv[1], "rb").read()
+events, at = [], 0
+while at + 28 <= len(data):
+    sync, _, _, clen, dlen = struct.unpack_from(">IqqII", data, at)
+    assert sync == 0xEDA1DA01, "not an LCM log"
+    at += 28
+    channel = data[at:at + clen].decode()
+    events.append((channel, data[at + clen:at + clen + dlen]))
+    at += clen + dlen
+states = [struct.unpack_from(">qqd?", d, 8) for c, d in events if c == "AMBDROP_STATE"]
+power = [struct.unpack_from(">qqqd?bb?4b", d, 8) for c, d in events if c == "AMBDROP_POWER"]
+summary = json.load(open(sys.argv[2]))
+assert len(states) == summary["lcm"]["states_published"], (len(states), summary["lcm"])
+assert len(power) == 1 and summary["lcm"]["power_events_published"] == 1, power
+_, seq, step, t, on, ambs, axes, motor, *powered = power[0]
+assert (seq, step, on, ambs, axes, motor) == (0, 40000, False, 3, 3, True), power[0]
+assert t == step * 5e-6 and powered == [0, 0, 0, 0], power[0]
+steps = [s[1] for s in states]
+assert steps[0] == 0 and steps == sorted(steps), steps
+after = [s for s in steps if s > step]
+assert after and after[0] <= step + 10, after[:2]  # the first output step after the event
+grid = [s for s in steps if s != after[0]]
+assert grid == list(range(0, 80001, 2000)), grid
+assert all(on == (s[1] <= step) for s in states for on in [s[3]]), "power_on wrong"
+print(f"live on udpm: {len(states)} states, the failure at step {step} announced once")
+PY
 "$tool" replay "$work/run.lcm" --out "$work/replay" >"$work/replay.txt" || {
   cat "$work/replay.txt"
   echo "FAIL: the replay of the recorded inputs does not reproduce the live run"

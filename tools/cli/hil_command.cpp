@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <exception>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include "controller_if/boundary/scenario_faults.hpp"
 #include "controller_if/loop/hil_session.hpp"
 #include "controller_if/loop/periodic_loop.hpp"
+#include "controller_if/loop/recorder_tee.hpp"
 #include "controller_if/loop/rt_clock.hpp"
 #include "controller_if/loop/rt_system.hpp"
 #include "controller_if/loop/step_driver.hpp"
@@ -30,6 +32,7 @@
 #include "tools/cli/scenario_outcome.hpp"
 #include "tools/cli/settled_start_refusal.hpp"
 #include "tools/hil/hil_links.hpp"
+#include "tools/hil/lcm_live_state.hpp"
 #include "tools/record/run_record_writer.hpp"
 #include "tools/validation/run_summary.hpp"
 #include "tools/validation/tdb_summary_json.hpp"
@@ -183,6 +186,24 @@ int RunHilCommand(const HilCommandOptions& given) {
       return kExitError;
     }
     hil.recorder = recorder.get();
+  }
+  // The run live on LCM beside the sensor readings (tools/hil/lcm_live_state.hpp).
+  std::unique_ptr<LcmLiveState> live;
+  std::unique_ptr<RecorderTee> tee;
+  if (!(options.state_interval_s >= 0.0 && std::isfinite(options.state_interval_s))) {
+    fmt::print(stderr, "error: --state-interval-s {}: expected a finite time >= 0 s\n",
+               options.state_interval_s);
+    return kExitUsage;
+  }
+  if (links.lcm && options.state_interval_s > 0.0) {
+    try {
+      live = std::make_unique<LcmLiveState>(links.lcm.get(), *model, options.state_interval_s);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: --state-interval-s: {}\n", e.what());
+      return kExitUsage;
+    }
+    tee = std::make_unique<RecorderTee>(recorder.get(), live.get());
+    hil.recorder = tee.get();
   }
 
   auto outputs = std::make_unique<HilSession::OutputRing>();
@@ -492,6 +513,13 @@ RegisteredCommand AddHilCommand(CLI::App& app) {
   hil_command->add_option("--trigger", options->trigger,
                           "at:SECONDS | gpio:CHIP:LINE | can | lcm (default: the config's "
                           "[trigger] schedule)");
+  hil_command
+      ->add_option("--state-interval-s", options->state_interval_s,
+                   "With --controller lcm: simulated time between the emulator states published "
+                   "live on AMBDROP_STATE, s (power events go out on AMBDROP_POWER when they "
+                   "happen; 0: no live state)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e6));
   hil_command->add_flag("--virtual-clock", options->virtual_clock,
                         "Run on simulated time, as fast as possible (offline, tests)");
   // The real-time flags override the config's [realtime] table; the callbacks note which were

@@ -32,6 +32,9 @@ struct HilCommandOptions {
   /// build on the host, an emulated CPU) still closes the loop sample by sample.
   bool lockstep = false;
   double lockstep_timeout_s = 1.0;
+  /// With --controller lcm: simulated time between the states published live on AMBDROP_STATE
+  /// (power events go out on AMBDROP_POWER as they happen); 0: none.
+  double state_interval_s = 0.01;
   // The command line over the config's [realtime] table: a flag given overrides its key.
   double spin_us = -1.0;  ///< --spin-us: poll the clock before each deadline (us); < 0: config
   bool rt_priority_given = false;  ///< --rt-priority was given (it may be 0: SCHED_OTHER)

@@ -95,6 +95,8 @@ void WriteLcmCounters(JsonWriter& json, const LcmEndpointCounters& c) {
   integer("sensors_ring_full", c.sensors_ring_full);
   integer("states_published", c.states_published);
   integer("states_ring_full", c.states_ring_full);
+  integer("power_events_published", c.power_events_published);
+  integer("power_events_ring_full", c.power_events_ring_full);
   integer("publish_rejected", c.publish_rejected);
   integer("publish_errors", c.publish_errors);
   integer("receive_errors", c.receive_errors);
