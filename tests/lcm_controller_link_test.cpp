@@ -12,7 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <lcm/lcm-cpp.hpp>
-#include <map>
+#include <algorithm>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -23,6 +23,7 @@
 #include "controller_if/loop/recorder_tee.hpp"
 #include "controller_if/loop/rt_clock.hpp"
 #include "io/lcm/lcm_transport.hpp"
+#include "malloc_guard.hpp"
 #include "test_configs.hpp"
 #include "tools/hil/lcm_controller_link.hpp"
 #include "tools/hil/lcm_live_state.hpp"
@@ -118,14 +119,20 @@ struct StateCapture final : RunRecorder {
     State state;
     Observation observation;
   };
-  std::map<std::int64_t, Kept> states;
+  std::vector<Kept> states;  // in step order; reserved, so capturing allocates nothing
   std::vector<RecordedPower> power;
+  const Kept* At(std::int64_t step) const {
+    const auto it = std::lower_bound(
+        states.begin(), states.end(), step,
+        [](const Kept& k, std::int64_t s) { return k.state.step_index < s; });
+    return it != states.end() && it->state.step_index == step ? &*it : nullptr;
+  }
   void OnStart(const RecordedStart&) noexcept override {}
   void OnInput(const RecordedInput&) noexcept override {}
   void OnPower(const RecordedPower& p) noexcept override { power.push_back(p); }
   void OnSensors(const RecordedSensors&) noexcept override {}
   void OnState(const State& state, const Observation& o) noexcept override {
-    states[state.step_index] = {state, o};
+    states.push_back({state, o});
   }
 };
 
@@ -165,6 +172,8 @@ TEST(LcmLiveState, AMonitorSeesTheRunAndItsPowerEventsAsTheyHappen) {
   constexpr double kInterval_s = 7e-3;
   LcmLiveState live(&endpoint, model, kInterval_s);
   StateCapture capture;
+  capture.states.reserve(static_cast<std::size_t>(model.total_steps) + 1);
+  capture.power.reserve(4);
   RecorderTee tee(&capture, &live);
   HilOptions hil;
   hil.recorder = &tee;
@@ -175,7 +184,14 @@ TEST(LcmLiveState, AMonitorSeesTheRunAndItsPowerEventsAsTheyHappen) {
   VirtualClock clock;
   PeriodicLoop loop(&clock, std::llround(substeps * step_s * 1e9));
   session.Start(clock.Now());
-  loop.Run([&](const LoopTick& tick) { return session.Period(tick.wake_ns); }, LoopRunOptions{});
+  {
+    // The live state is pushed from the real-time thread: no allocation there.
+    testing::MallocGuard guard;
+    loop.Run([&](const LoopTick& tick) { return session.Period(tick.wake_ns); }, LoopRunOptions{});
+    if (testing::MallocGuard::Available()) {
+      EXPECT_EQ(guard.allocations(), 0);
+    }
+  }
   ASSERT_EQ(session.stop(), HilStop::kDuration);
   const std::int64_t pushed = live.states_pushed();
   ASSERT_TRUE(WaitFor([&] {
@@ -210,10 +226,10 @@ TEST(LcmLiveState, AMonitorSeesTheRunAndItsPowerEventsAsTheyHappen) {
   bool after_event_seen = false;
   for (const ambdrop_lcm::emulator_state_t& m : subscriber.states) {
     SCOPED_TRACE(m.step_index);
-    const auto kept = capture.states.find(m.step_index);
-    ASSERT_NE(kept, capture.states.end()) << "published a state the session never had";
-    const State& state = kept->second.state;
-    const Observation& o = kept->second.observation;
+    const StateCapture::Kept* kept = capture.At(m.step_index);
+    ASSERT_NE(kept, nullptr) << "published a state the session never had";
+    const State& state = kept->state;
+    const Observation& o = kept->observation;
     // On the interval's grid, but for the first state after the power event.
     if (previous < 0) {
       EXPECT_EQ(m.step_index, 0);
