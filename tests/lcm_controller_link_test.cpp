@@ -5,6 +5,7 @@
 // events.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <ambdrop_lcm/amb_currents_t.hpp>
 #include <ambdrop_lcm/emulator_state_t.hpp>
 #include <ambdrop_lcm/power_event_t.hpp>
@@ -12,7 +13,6 @@
 #include <chrono>
 #include <cmath>
 #include <lcm/lcm-cpp.hpp>
-#include <algorithm>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -122,9 +122,9 @@ struct StateCapture final : RunRecorder {
   std::vector<Kept> states;  // in step order; reserved, so capturing allocates nothing
   std::vector<RecordedPower> power;
   const Kept* At(std::int64_t step) const {
-    const auto it = std::lower_bound(
-        states.begin(), states.end(), step,
-        [](const Kept& k, std::int64_t s) { return k.state.step_index < s; });
+    const auto it =
+        std::lower_bound(states.begin(), states.end(), step,
+                         [](const Kept& k, std::int64_t s) { return k.state.step_index < s; });
     return it != states.end() && it->state.step_index == step ? &*it : nullptr;
   }
   void OnStart(const RecordedStart&) noexcept override {}

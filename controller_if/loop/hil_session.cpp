@@ -1,5 +1,6 @@
 #include "controller_if/loop/hil_session.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -54,6 +55,14 @@ void HilSession::OnSensors(StepDriver& driver, std::int64_t step) noexcept {
 }
 
 void HilSession::OnOutput(StepDriver& driver) noexcept {
+  if (counters_.power_events == 0) {
+    const Observation& o = driver.observation();
+    for (std::size_t t = 0; t < model_.params.tdbs.size(); ++t) {
+      const double clearance = model_.params.tdbs[t].clearance_m;
+      counters_.levitated_fraction =
+          std::max(counters_.levitated_fraction, (clearance + o.tdb[t].penetration_m) / clearance);
+    }
+  }
   if (outputs_ != nullptr && !outputs_->TryPush(driver.observation())) {
     ++counters_.observations_dropped;
   }
@@ -142,6 +151,7 @@ bool HilSession::Period(std::int64_t now_ns, std::int64_t missed_before) noexcep
     ++counters_.currents_received;
     watchdog_.Feed(now_ns);
   }
+  if (!received && counters_.currents_received > 0) ++counters_.periods_without_currents;
   RecordedInput& record = pending_record_;
   record = RecordedInput{};
   record.step = driver_.state().step_index;

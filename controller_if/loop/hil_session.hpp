@@ -37,6 +37,13 @@ struct HilCounters {
   /// Periods the physics advanced without a controller exchange, to catch up after the loop
   /// missed deadlines (see Period).
   std::int64_t catch_up_periods = 0;
+  /// Periods, after the controller's first currents message, that ended with no new one: its
+  /// answer came late (after the period it was due in) or not at all.
+  std::int64_t periods_without_currents = 0;
+  /// Largest journal excursion towards contact before the first power event, as a fraction of
+  /// its TDB's radial clearance ((clearance + penetration) / clearance, over the output states):
+  /// how well the controller levitated the rotor.
+  double levitated_fraction = 0.0;
 };
 
 enum class HilStop { kRunning, kDuration, kWatchdog, kDiverged };

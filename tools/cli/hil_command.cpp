@@ -9,6 +9,7 @@
 #include <csignal>
 #include <exception>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <thread>
@@ -190,6 +191,16 @@ int RunHilCommand(const HilCommandOptions& given) {
   // The run live on LCM beside the sensor readings (tools/hil/lcm_live_state.hpp).
   std::unique_ptr<LcmLiveState> live;
   std::unique_ptr<RecorderTee> tee;
+  {
+    const HilCheckBounds& b = options.check_bounds;
+    for (const double bound : {b.levitated_fraction, b.answered_fraction, b.max_tdb_load_N,
+                               b.max_penetration_m, b.max_race_speed_rad_s}) {
+      if (std::isnan(bound)) {
+        fmt::print(stderr, "error: a --check-* bound is NaN: give a number\n");
+        return kExitUsage;
+      }
+    }
+  }
   if (!(options.state_interval_s >= 0.0 && std::isfinite(options.state_interval_s))) {
     fmt::print(stderr, "error: --state-interval-s {}: expected a finite time >= 0 s\n",
                options.state_interval_s);
@@ -333,8 +344,17 @@ int RunHilCommand(const HilCommandOptions& given) {
     first_power_event_s =
         static_cast<double>(counters.first_power_event_step) * model->params.simulation.step_s;
   }
-  const std::string check_failures = checks.Failures(
-      first_power_event_s, counters.currents_received, options.controller != "internal");
+  HilRunFacts facts;
+  facts.first_power_event_s = first_power_event_s;
+  facts.levitated_fraction = counters.levitated_fraction;
+  facts.external = options.controller != "internal";
+  const HilLinks::Answers answers =
+      links.ControllerAnswers(counters.currents_received, counters.sensor_samples_sent);
+  facts.answers = answers.answers;
+  // A scenario's swallowed currents were answers all the same (LCM counts them on arrival).
+  if (scenario_link && !links.lcm) facts.answers += scenario_link->messages_swallowed();
+  facts.samples_sent = answers.samples;
+  const std::string check_failures = checks.Failures(facts, options.check_bounds);
   // The scenario's expectations, judged on the run's own stop (a scenario may expect the
   // watchdog to stop it).
   std::vector<ScenarioOutcome::Check> expectations;
@@ -373,6 +393,30 @@ int RunHilCommand(const HilCommandOptions& given) {
   } else {
     json.Null();
   }
+  // The figures the checks judged, beside their bounds (null: no bound).
+  const auto bound = [&json](const char* key, double value) {
+    json.Key(key);
+    if (std::isfinite(value)) {
+      json.Number(value);
+    } else {
+      json.Null();
+    }
+  };
+  json.Key("levitated_fraction").Number(facts.levitated_fraction);
+  json.Key("answers").Integer(facts.answers);
+  json.Key("samples_sent").Integer(facts.samples_sent);
+  json.Key("periods_without_currents").Integer(counters.periods_without_currents);
+  json.Key("peak_tdb_load_N").Number(checks.peak_tdb_load_N());
+  json.Key("max_penetration_m").Number(checks.max_penetration_m());
+  json.Key("max_race_speed_rad_s").Number(checks.max_race_speed_rad_s());
+  json.Key("bounds").BeginObject();
+  bound("levitated_fraction", options.check_bounds.levitated_fraction);
+  bound("answered_fraction", facts.external ? options.check_bounds.answered_fraction
+                                            : std::numeric_limits<double>::infinity());
+  bound("max_tdb_load_N", options.check_bounds.max_tdb_load_N);
+  bound("max_penetration_m", options.check_bounds.max_penetration_m);
+  bound("max_race_speed_rad_s", options.check_bounds.max_race_speed_rad_s);
+  json.EndObject();
   json.EndObject();
   json.Key("output_error");
   if (output_error.empty()) {
@@ -520,6 +564,32 @@ RegisteredCommand AddHilCommand(CLI::App& app) {
                    "happen; 0: no live state)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1e6));
+  // The checks' bounds (tools/cli/hil_checks.hpp).
+  HilCheckBounds& b = options->check_bounds;
+  hil_command
+      ->add_option("--check-levitated-fraction", b.levitated_fraction,
+                   "Before the first power event every journal stays within this fraction of its "
+                   "TDB's radial clearance")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e6));
+  hil_command
+      ->add_option("--check-answered-fraction", b.answered_fraction,
+                   "An outside controller answers at least this fraction of the sensor samples "
+                   "sent (currents messages per sample; 0: no check)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  hil_command
+      ->add_option("--check-max-tdb-load-N", b.max_tdb_load_N,
+                   "Largest TDB normal force allowed, N (default: no bound)")
+      ->check(CLI::Range(0.0, 1e12));
+  hil_command
+      ->add_option("--check-max-penetration-m", b.max_penetration_m,
+                   "Largest journal excursion beyond its clearance allowed, m (default: no bound)")
+      ->check(CLI::Range(-1.0, 1.0));
+  hil_command
+      ->add_option("--check-max-race-speed-rad-s", b.max_race_speed_rad_s,
+                   "Largest inner-race spin speed allowed, rad/s (default: no bound)")
+      ->check(CLI::Range(0.0, 1e9));
   hil_command->add_flag("--virtual-clock", options->virtual_clock,
                         "Run on simulated time, as fast as possible (offline, tests)");
   // The real-time flags override the config's [realtime] table; the callbacks note which were

@@ -2,6 +2,8 @@
 #include <string>
 #include <vector>
 
+#include "tools/cli/hil_checks.hpp"
+
 namespace ambdrop {
 
 struct HilCommandOptions {
@@ -35,6 +37,8 @@ struct HilCommandOptions {
   /// With --controller lcm: simulated time between the states published live on AMBDROP_STATE
   /// (power events go out on AMBDROP_POWER as they happen); 0: none.
   double state_interval_s = 0.01;
+  /// The checks every run is held to (tools/cli/hil_checks.hpp): `--check-*`.
+  HilCheckBounds check_bounds;
   // The command line over the config's [realtime] table: a flag given overrides its key.
   double spin_us = -1.0;  ///< --spin-us: poll the clock before each deadline (us); < 0: config
   bool rt_priority_given = false;  ///< --rt-priority was given (it may be 0: SCHED_OTHER)

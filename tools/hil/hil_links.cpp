@@ -165,6 +165,19 @@ std::uint64_t HilLinks::RejectedControllerMessages() const {
          c.malformed_current_bound;
 }
 
+HilLinks::Answers HilLinks::ControllerAnswers(std::int64_t session_answers,
+                                              std::int64_t session_samples) const {
+  if (lcm) {
+    const LcmEndpointCounters c = lcm->counters();
+    return {static_cast<std::int64_t>(c.currents_received),
+            static_cast<std::int64_t>(c.sensors_published + c.sensors_ring_full)};
+  }
+  if (can_link != nullptr) {
+    return {session_answers, static_cast<std::int64_t>(can_link->counters().exchanges_sent)};
+  }
+  return {session_answers, session_samples};
+}
+
 void HilLinks::WriteSummary(JsonWriter& json) const {
   if (lcm) WriteLcmCounters(json, lcm->counters());
   if (can_link != nullptr) WriteCanCounters(json, "can", *can_link, *can_bus);

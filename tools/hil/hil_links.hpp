@@ -72,6 +72,16 @@ struct HilLinks {
   /// Controller messages received and refused (LCM: not decodable, counts out of range, a
   /// current not finite or beyond its bound).
   std::uint64_t RejectedControllerMessages() const;
+  /// Sensor samples that went out on the wire to an outside controller and the answers that
+  /// came back, for the answered-fraction check. LCM: samples published and valid currents
+  /// messages received (every one, also two within one period); CAN: exchanges sent (above the
+  /// exchange rate only every n-th sample goes out) and `session_answers` (periods with new
+  /// currents). Else `session_samples` and `session_answers`.
+  struct Answers {
+    std::int64_t answers = 0;
+    std::int64_t samples = 0;
+  };
+  Answers ControllerAnswers(std::int64_t session_answers, std::int64_t session_samples) const;
 };
 
 /// Builds the links for `--controller` and `--trigger`. `config` (its [can] frame map) and
