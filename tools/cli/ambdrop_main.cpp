@@ -24,7 +24,8 @@ int main(int argc, char** argv) {
       ambdrop::AddSimCommand(app),      ambdrop::AddReplayCommand(app),
       ambdrop::AddValidateCommand(app), ambdrop::AddModesCommand(app),
       ambdrop::AddKeysCommand(app),     ambdrop::AddHilCommand(app),
-      ambdrop::AddMeasureCommand(app),  ambdrop::AddFitCommand(app)};
+      ambdrop::AddMeasureCommand(app),  ambdrop::AddFitCommand(app),
+      ambdrop::AddCanExportCommand(app)};
 
   try {
     app.parse(argc, argv);

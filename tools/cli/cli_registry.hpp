@@ -32,5 +32,6 @@ RegisteredCommand AddKeysCommand(CLI::App& app);
 RegisteredCommand AddHilCommand(CLI::App& app);
 RegisteredCommand AddMeasureCommand(CLI::App& app);
 RegisteredCommand AddFitCommand(CLI::App& app);
+RegisteredCommand AddCanExportCommand(CLI::App& app);
 
 }  // namespace ambdrop
