@@ -147,6 +147,44 @@ std::string CanFramesHeader(const FrameMap& map, double exchange_rate_Hz,
                        s.value);
     }
   }
+  // The currents and sensors again as tables, for code that loops over AMBs and sensors.
+  h += R"(
+/* Every current (to the emulator) and sensor (from it) signal as a table entry, for code that
+ * loops over AMBs and sensors: index is the AMB's or sensor's, axis 0 = x, 1 = y. */
+typedef struct {
+  uint32_t id;
+  int extended;
+  int byte_offset;
+  int width_bytes;
+  int is_signed;
+  int big_endian;
+  double scale;
+  double offset;
+  int index;
+  int axis;
+} ambdrop_can_signal;
+)";
+  const auto table = [&](const char* function, CanSignalRole role) {
+    std::string rows;
+    int count = 0;
+    for (const CanSignalSpec& s : spec.signals) {
+      if (s.role != role) continue;
+      rows += fmt::format("      {{0x{:X}u, {}, {}, {}, {}, {}, {}, {}, {}, {}}}, /* {} */\n",
+                          s.layout.id, s.layout.extended ? 1 : 0, s.layout.byte_offset,
+                          s.layout.width_bytes, s.layout.is_signed ? 1 : 0,
+                          s.layout.byte_order == CanByteOrder::kBig ? 1 : 0, Exact(s.scaling.scale),
+                          Exact(s.scaling.offset), s.index, s.axis, s.name);
+      ++count;
+    }
+    if (count == 0) rows = "      {0u, 0, 0, 0, 0, 0, 0.0, 0.0, 0, 0}, /* none */\n";
+    h += fmt::format(
+        "static inline const ambdrop_can_signal* {}(int* count) {{\n"
+        "  static const ambdrop_can_signal signals[] = {{\n{}  }};\n"
+        "  *count = {};\n  return signals;\n}}\n",
+        function, rows, count);
+  };
+  table("ambdrop_can_currents_in", CanSignalRole::kCurrent);
+  table("ambdrop_can_sensors_out", CanSignalRole::kSensor);
   h += R"(
 /* The raw integer at `offset` (sign-extended when `is_signed`). */
 static inline int64_t ambdrop_can_read_raw(const uint8_t* data, int offset, int width,
@@ -194,6 +232,17 @@ static inline int64_t ambdrop_can_raw_of(double physical, double scale, double o
   ambdrop_can_write_raw((data), SIG##_BYTE_OFFSET, SIG##_WIDTH_BYTES, SIG##_BIG_ENDIAN,     \
                         ambdrop_can_raw_of((physical), SIG##_SCALE, SIG##_OFFSET,            \
                                            SIG##_WIDTH_BYTES, SIG##_SIGNED))
+
+/* The same for a table entry. */
+static inline double ambdrop_can_get(const uint8_t* data, const ambdrop_can_signal* s) {
+  return (double)ambdrop_can_read_raw(data, s->byte_offset, s->width_bytes, s->is_signed,
+                                      s->big_endian) * s->scale + s->offset;
+}
+static inline void ambdrop_can_set(uint8_t* data, const ambdrop_can_signal* s, double physical) {
+  ambdrop_can_write_raw(data, s->byte_offset, s->width_bytes, s->big_endian,
+                        ambdrop_can_raw_of(physical, s->scale, s->offset, s->width_bytes,
+                                           s->is_signed));
+}
 
 #endif /* AMBDROP_CAN_FRAMES_H */
 )";
