@@ -50,8 +50,20 @@ grep -q 'failures="0"' ok.xml || { cat ok.xml; echo "FAIL: JUnit"; exit 1; }
 grep -q '"lockstep_timeouts": 0' ok/summary.json || { echo "FAIL: answers missed"; exit 1; }
 run swapped 4 --swap-ends
 grep -q '<failure' swapped.xml || { echo "FAIL: no JUnit failure for the swapped ends"; exit 1; }
+mkdir -p out && cp ok/summary.json out/ok_summary.json && cp ok.xml swapped.xml out/
 echo "the kit's C SocketCAN controller on vcan0: scenario passed; swapped ends exit 4"
 GUEST
 } >"$guest"
 chmod +x "$guest"
-VMEXTRA="$tool $work/ex/can_pid" VMTIMEOUT=400 bash "$source_dir/tests/hw/run_in_vm.sh" "$guest"
+VMEXTRA="$tool $work/ex/can_pid" VMOUT=$work/vmout VMTIMEOUT=400 \
+  bash "$source_dir/tests/hw/run_in_vm.sh" "$guest"
+# The results came out of the guest (VMOUT): the run over vcan0 as the host reads it.
+python3 - "$work/vmout/ok_summary.json" <<'PY' || fail "the guest's results"
+import json, sys
+s = json.load(open(sys.argv[1]))
+assert s["status"] == "ok" and s["checks"]["passed"], s["status"]
+assert s["can"]["exchanges_sent"] > 200 and s["checks"]["levitated_fraction"] < 0.05, s["checks"]
+print(f"copied out of the guest: status {s['status']}, {s['can']['exchanges_sent']} exchanges, "
+      f"levitated within {s['checks']['levitated_fraction']:.3g} of the clearance")
+PY
+grep -q '<failure' "$work/vmout/swapped.xml" || fail "swapped.xml not copied out"

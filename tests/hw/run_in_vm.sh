@@ -21,6 +21,9 @@
 #   VMEXTRA    more host programs to copy in (space-separated); candump, cansend, gpiodetect,
 #              gpioinfo and gpiomon are always there
 #   VMACCEL    qemu accelerator, default tcg (KVM is often unusable in CI VMs)
+#   VMFILES    host files (configs, scenarios) copied into the guest's working folder /job
+#   VMOUT      a host folder: what the guest's job leaves in /job/out is copied there when it
+#              ends (tar + base64 over the console; the guest's files vanish at power-off)
 #
 # Cost: the first run downloads Debian's kernel and kernel sources and builds gpio-sim
 # (~35-60 s); later runs boot from the cache (~6-20 s). Runs may go in parallel: the cache is
@@ -112,7 +115,7 @@ RUN=$(mktemp -d "$W/run.XXXXXX")
 R="$RUN/root"
 mkdir -p "$R"/{bin,proc,sys,dev,tmp,mods,usr/bin,job}
 cp /bin/busybox "$R/bin/"
-for a in sh mount insmod ip mkdir cat echo poweroff sleep ls uname grep cmp sed head tail; do ln -s busybox "$R/bin/$a"; done
+for a in sh mount insmod ip mkdir cat echo poweroff sleep ls uname grep cmp sed head tail cp tar gzip base64; do ln -s busybox "$R/bin/$a"; done
 for k in can can-raw can-dev vcan configfs; do
   f=$(find "$K/lib/modules" -name "$k.ko*" | head -1)
   [ -n "$f" ] || continue  # built into this kernel
@@ -129,6 +132,10 @@ copy_bin "$PROG"
 for b in /usr/bin/candump /usr/bin/cansend /usr/bin/gpiodetect /usr/bin/gpioinfo /usr/bin/gpiomon ${VMEXTRA:-}; do
   copy_bin "$b"
 done
+for f in ${VMFILES:-}; do
+  cp "$f" "$R/job/"
+done
+[ -n "${VMOUT:-}" ] && touch "$R/job/.vmout"
 printf '%q ' "$(basename "$PROG")" "$@" > "$R/job/cmd"
 cat > "$R/init" <<'INIT'
 #!/bin/sh
@@ -145,7 +152,11 @@ mkdir $C $C/bank0 $C/bank0/line3; echo 8 > $C/bank0/num_lines; echo hil-sim > $C
 echo estop > $C/bank0/line3/name; echo 1 > $C/live
 ip link show vcan0 2>/dev/null | grep -q ',UP' && V=up || V=missing
 echo "guest: Linux $(uname -r); gpio-sim $(cat $C/dev_name)/$(cat $C/bank0/chip_name) [$(cat $C/bank0/label)]; vcan0 $V"
-cd /job; sh -c "$(cat /job/cmd)"; echo "VM-EXIT=$?"
+cd /job; sh -c "$(cat /job/cmd)"; rc=$?
+if [ -f /job/.vmout ] && [ -d /job/out ]; then
+  echo VM-OUT-BEGIN; tar c -C /job/out . | gzip -1 | base64; echo VM-OUT-END
+fi
+echo "VM-EXIT=$rc"
 poweroff -f
 INIT
 chmod +x "$R/init"
@@ -160,8 +171,15 @@ timeout "${VMTIMEOUT:-300}" qemu-system-x86_64 -accel "${VMACCEL:-tcg}" -m 1024 
   -append "console=ttyS0 panic=-1 quiet loglevel=3" > "$RUN/console.log" 2>&1 || status=$?
 # Drop carriage returns and the firmware's terminal escapes (they glue onto the guest's first line).
 tr -d '\r' < "$RUN/console.log" | sed 's/\x1b\[[0-9;?]*[A-Za-z]//g; s/\x1bc//g' > "$RUN/console.txt"
-grep -vE '^\[ *[0-9]+\.[0-9]+\]|^qemu-system|SeaBIOS|iPXE|Booting from|^VM-EXIT=' "$RUN/console.txt" \
+sed '/^VM-OUT-BEGIN$/,/^VM-OUT-END$/d' "$RUN/console.txt" \
+  | grep -vE '^\[ *[0-9]+\.[0-9]+\]|^qemu-system|SeaBIOS|iPXE|Booting from|^VM-EXIT=' \
   | sed '/^$/d' || true
+if [ -n "${VMOUT:-}" ] && grep -q '^VM-OUT-END$' "$RUN/console.txt"; then
+  mkdir -p "$VMOUT"
+  sed -n '/^VM-OUT-BEGIN$/,/^VM-OUT-END$/p' "$RUN/console.txt" | sed '1d;$d' \
+    | grep -E '^[A-Za-z0-9+/=]+$' | base64 -d | tar xz -C "$VMOUT" ||
+    echo "run_in_vm: cannot unpack the guest's out folder into $VMOUT" >&2
+fi
 rc=$(sed -n 's/^VM-EXIT=\([0-9]*\)$/\1/p' "$RUN/console.txt" | tail -1)
 if [ -z "$rc" ]; then
   [ "$status" = 124 ] && echo "run_in_vm: the guest did not finish within ${VMTIMEOUT:-300} s" >&2
