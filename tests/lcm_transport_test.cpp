@@ -6,6 +6,7 @@
 
 #include <ambdrop_lcm/amb_currents_t.hpp>
 #include <ambdrop_lcm/emulator_state_t.hpp>
+#include <ambdrop_lcm/plant_description_t.hpp>
 #include <ambdrop_lcm/sensor_readings_t.hpp>
 #include <ambdrop_lcm/trigger_t.hpp>
 #include <chrono>
@@ -155,6 +156,51 @@ TEST(LcmEndpoint, CurrentsRoundTripIntoThePoppedRecord) {
   const LcmEndpointCounters c = endpoint->counters();
   EXPECT_EQ(c.currents_received, 1u);
   EXPECT_EQ(c.malformed_decode + c.malformed_range + c.malformed_non_finite, 0u);
+}
+
+// A controller that starts late, or restarts, asks for the plant description (any message on
+// the request channel) and gets it again, the same text; before one was given, a request is
+// counted and nothing is sent.
+TEST(LcmEndpoint, ThePlantDescriptionGoesOutAtTheStartAndOnRequest) {
+  auto endpoint = MakeEndpoint();
+  std::mutex mutex;
+  std::vector<ambdrop_lcm::plant_description_t> got;
+  struct Handler {
+    std::mutex* mutex;
+    std::vector<ambdrop_lcm::plant_description_t>* got;
+    void On(const lcm::ReceiveBuffer*, const std::string&,
+            const ambdrop_lcm::plant_description_t* m) {
+      std::lock_guard lock(*mutex);
+      got->push_back(*m);
+    }
+  } handler{&mutex, &got};
+  endpoint->lcm().subscribe(endpoint->options().plant_channel, &Handler::On, &handler);
+  endpoint->Start();
+  const auto received = [&] {
+    std::lock_guard lock(mutex);
+    return got.size();
+  };
+  const std::uint8_t anything[3] = {1, 2, 3};
+  const auto request = [&] {
+    ASSERT_EQ(endpoint->lcm().publish(endpoint->options().plant_request_channel, anything, 3), 0);
+  };
+  request();
+  ASSERT_TRUE(WaitFor([&] { return endpoint->counters().plant_requests == 1; }));
+  EXPECT_EQ(endpoint->counters().plant_published, 0u);
+  const std::string json = R"({"schema_version": 1, "ambs": [{"index": 0, "name": "de"}]})";
+  endpoint->PublishPlantDescription(json, 1);
+  ASSERT_TRUE(WaitFor([&] { return received() == 1; }));
+  request();
+  ASSERT_TRUE(WaitFor([&] { return received() == 2; }));
+  endpoint->Stop();
+  for (const ambdrop_lcm::plant_description_t& m : got) {
+    EXPECT_EQ(m.json, json);
+    EXPECT_EQ(m.schema_version, 1);
+    EXPECT_GT(m.utime, 0);
+  }
+  const LcmEndpointCounters c = endpoint->counters();
+  EXPECT_EQ(c.plant_requests, 2u);
+  EXPECT_EQ(c.plant_published, 2u);
 }
 
 TEST(LcmEndpoint, EntriesBeyondTheAmbCountAreIgnored) {

@@ -6,6 +6,7 @@
 
 #include <ambdrop_lcm/amb_currents_t.hpp>
 #include <ambdrop_lcm/emulator_state_t.hpp>
+#include <ambdrop_lcm/plant_description_t.hpp>
 #include <ambdrop_lcm/power_event_t.hpp>
 #include <ambdrop_lcm/sensor_readings_t.hpp>
 #include <ambdrop_lcm/trigger_t.hpp>
@@ -40,6 +41,9 @@ struct LcmEndpoint::Callbacks {
   static void Trigger(const lcm_recv_buf_t* rbuf, const char* /*channel*/, void* user) {
     static_cast<LcmEndpoint*>(user)->HandleTrigger(rbuf->data, rbuf->data_size);
   }
+  static void PlantRequest(const lcm_recv_buf_t*, const char* /*channel*/, void* user) {
+    static_cast<LcmEndpoint*>(user)->HandlePlantRequest();
+  }
 };
 
 namespace {
@@ -70,10 +74,11 @@ void NameThread(std::thread* thread, const char* name) {
 }  // namespace
 
 LcmEndpoint::LcmEndpoint(LcmEndpointOptions options) : options_(std::move(options)) {
-  const std::string* channels[] = {&options_.currents_channel, &options_.trigger_channel,
-                                   &options_.sensors_channel, &options_.state_channel,
-                                   &options_.power_channel};
-  for (int i = 0; i < 5; ++i) {
+  const std::string* channels[] = {&options_.currents_channel,     &options_.trigger_channel,
+                                   &options_.sensors_channel,      &options_.state_channel,
+                                   &options_.power_channel,        &options_.plant_channel,
+                                   &options_.plant_request_channel};
+  for (int i = 0; i < 7; ++i) {
     if (channels[i]->empty()) throw std::invalid_argument("LCM channel names must not be empty");
     // A shared name would loop our own output back in as (malformed) input.
     for (int j = 0; j < i; ++j) {
@@ -99,7 +104,9 @@ LcmEndpoint::LcmEndpoint(LcmEndpointOptions options) : options_(std::move(option
   if (lcm_subscribe(c_lcm, options_.currents_channel.c_str(), &Callbacks::Currents, this) ==
           nullptr ||
       lcm_subscribe(c_lcm, options_.trigger_channel.c_str(), &Callbacks::Trigger, this) ==
-          nullptr) {
+          nullptr ||
+      lcm_subscribe(c_lcm, options_.plant_request_channel.c_str(), &Callbacks::PlantRequest,
+                    this) == nullptr) {
     throw std::runtime_error("LCM: cannot subscribe");
   }
 
@@ -184,6 +191,8 @@ LcmEndpointCounters LcmEndpoint::counters() const noexcept {
   c.states_ring_full = states_.dropped();
   c.power_events_published = power_events_published_.load(kRelaxed);
   c.power_events_ring_full = power_.dropped();
+  c.plant_requests = plant_requests_.load(kRelaxed);
+  c.plant_published = plant_published_.load(kRelaxed);
   c.publish_rejected = publish_rejected_.load(kRelaxed);
   c.publish_errors = publish_errors_.load(kRelaxed);
   c.receive_errors = receive_errors_.load(kRelaxed);
@@ -375,6 +384,42 @@ void LcmEndpoint::PublishPowerEvent(const HilPowerEvent& event) noexcept {
   }
   const bool ok = EncodeAndPublish(msg, options_.power_channel, lcm_.get(), &power_buffer_);
   (ok ? power_events_published_ : publish_errors_).fetch_add(1, std::memory_order_relaxed);
+}
+
+// --- Plant description (setup and receive threads, never the real-time one) -----------------
+
+void LcmEndpoint::PublishPlantDescription(std::string json, int schema_version) {
+  {
+    std::lock_guard<std::mutex> lock(plant_mutex_);
+    plant_json_ = std::move(json);
+    plant_schema_version_ = schema_version;
+  }
+  PublishPlant();
+}
+
+void LcmEndpoint::HandlePlantRequest() noexcept {
+  plant_requests_.fetch_add(1, std::memory_order_relaxed);
+  PublishPlant();
+}
+
+void LcmEndpoint::PublishPlant() noexcept {
+  try {
+    ambdrop_lcm::plant_description_t msg;
+    {
+      std::lock_guard<std::mutex> lock(plant_mutex_);
+      if (plant_json_.empty()) return;
+      msg.json = plant_json_;
+      msg.schema_version = plant_schema_version_;
+    }
+    msg.utime = std::chrono::duration_cast<std::chrono::microseconds>(
+                    std::chrono::system_clock::now().time_since_epoch())
+                    .count();
+    const bool ok = lcm_->publish(options_.plant_channel, &msg) == 0;
+    (ok ? plant_published_ : publish_errors_).fetch_add(1, std::memory_order_relaxed);
+  } catch (...) {
+    // A description too large for the transport, or no memory: counted, the run goes on.
+    publish_errors_.fetch_add(1, std::memory_order_relaxed);
+  }
 }
 
 }  // namespace ambdrop

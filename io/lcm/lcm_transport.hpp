@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -29,6 +30,8 @@ struct LcmEndpointOptions {
   std::string sensors_channel = "AMBDROP_SENSORS";    ///< out: ambdrop_lcm::sensor_readings_t
   std::string state_channel = "AMBDROP_STATE";        ///< out: ambdrop_lcm::emulator_state_t
   std::string power_channel = "AMBDROP_POWER";        ///< out: ambdrop_lcm::power_event_t
+  std::string plant_channel = "AMBDROP_PLANT";        ///< out: ambdrop_lcm::plant_description_t
+  std::string plant_request_channel = "AMBDROP_PLANT_REQUEST";  ///< in: any message
   /// Longest wait of one lcm.handleTimeout call of the receive thread: it bounds how long Stop
   /// waits for that thread, not the receive latency (a message wakes it at once).
   std::chrono::milliseconds receive_timeout{20};
@@ -64,6 +67,8 @@ struct LcmEndpointCounters {
   std::uint64_t states_ring_full = 0;   ///< TryPushState refused: the publish thread lagged
   std::uint64_t power_events_published = 0;
   std::uint64_t power_events_ring_full = 0;  ///< TryPushPowerEvent refused
+  std::uint64_t plant_requests = 0;          ///< messages on the plant request channel
+  std::uint64_t plant_published = 0;         ///< plant descriptions published
   std::uint64_t publish_rejected = 0;        ///< records with counts out of range, not published
   std::uint64_t publish_errors = 0;          ///< lcm publish calls that failed
   std::uint64_t receive_errors = 0;          ///< lcm handleTimeout calls that failed
@@ -137,6 +142,11 @@ class LcmEndpoint {
     return pushed;
   }
 
+  // --- Setup (not the real-time thread) ---------------------------------------------------
+  /// Keeps the plant description (`json`, its `schema_version`) and publishes it now; the
+  /// receive thread publishes it again on each request. Thread-safe; allocates.
+  void PublishPlantDescription(std::string json, int schema_version);
+
   // --- Any thread -------------------------------------------------------------------------
   LcmEndpointCounters counters() const noexcept;
   const LcmEndpointOptions& options() const noexcept { return options_; }
@@ -151,6 +161,8 @@ class LcmEndpoint {
   void PublishLoop() noexcept;
   void HandleCurrents(const void* data, std::size_t size) noexcept;
   void HandleTrigger(const void* data, std::size_t size) noexcept;
+  void HandlePlantRequest() noexcept;
+  void PublishPlant() noexcept;
   void PublishSensors(const HilSensorReadings& readings) noexcept;
   void PublishState(const HilEmulatorState& state) noexcept;
   void PublishPowerEvent(const HilPowerEvent& event) noexcept;
@@ -193,6 +205,11 @@ class LcmEndpoint {
   std::atomic<std::uint64_t> sensors_published_{0};
   std::atomic<std::uint64_t> states_published_{0};
   std::atomic<std::uint64_t> power_events_published_{0};
+  std::atomic<std::uint64_t> plant_requests_{0};
+  std::atomic<std::uint64_t> plant_published_{0};
+  std::mutex plant_mutex_;  ///< guards the two below (setup and receive threads)
+  std::string plant_json_;  ///< "": none yet
+  int plant_schema_version_ = 0;
   std::atomic<std::uint64_t> publish_rejected_{0};
   std::atomic<std::uint64_t> publish_errors_{0};
 };

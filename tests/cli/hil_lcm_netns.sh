@@ -25,7 +25,7 @@ unshare -n bash -c "
   ip route add 239.0.0.0/8 dev lo
   '$controller' '$config' ${sets[*]} --idle-exit-s 1 > '$work/controller.log' 2>&1 &
   # A monitor: LCM's own logger on the live state and power channels.
-  lcm-logger -q -f -c 'AMBDROP_(STATE|POWER)' '$work/live.lcm' &
+  lcm-logger -q -f -c 'AMBDROP_(STATE|POWER|PLANT)' '$work/live.lcm' &
   logger=\$!
   sleep 0.5
   '$tool' hil '$config' --controller lcm ${sets[*]} --set simulation.duration_s=0.4 \
@@ -70,7 +70,8 @@ echo "20 kHz lock step over LCM udpm: byte-identical to ambdrop sim"
 # The run live on udpm as a monitor saw it (lcm-logger): AMBDROP_STATE every 10 ms of simulated
 # time (the default --state-interval-s) and at once after the failure, AMBDROP_POWER once, at the
 # scheduled trigger's step, with no coil powered after it.
-python3 - "$work/live.lcm" "$work/out/summary.json" <<'PY'
+"$tool" hil "$config" "${sets[@]}" --set simulation.duration_s=0.4 --describe "$work/plant.json"
+python3 - "$work/live.lcm" "$work/out/summary.json" "$work/plant.json" <<'PY'
 import json, struct, sys
 data = open(sys.argv[1], "rb").read()
 events, at = [], 0
@@ -96,7 +97,14 @@ assert after and after[0] <= step + 10, after[:2]  # the first output step after
 grid = [s for s in steps if s != after[0]]
 assert grid == list(range(0, 80001, 2000)), grid
 assert all(on == (s[1] <= step) for s in states for on in [s[3]]), "power_on wrong"
-print(f"live on udpm: {len(states)} states, the failure at step {step} announced once")
+# The plant description went out at the start: the JSON --describe writes, byte for byte.
+plants = [d for c, d in events if c == "AMBDROP_PLANT"]
+assert len(plants) == 1 and summary["lcm"]["plant_published"] == 1, len(plants)
+_, _, version, length = struct.unpack_from(">qqiI", plants[0])
+text = plants[0][24:24 + length - 1].decode()  # LCM strings carry their NUL
+assert version == 1 and text == open(sys.argv[3]).read(), (version, text[:200])
+print(f"live on udpm: {len(states)} states, the failure at step {step} announced once, "
+      f"the plant description ({len(text)} bytes) at the start")
 PY
 "$tool" replay "$work/run.lcm" --out "$work/replay" >"$work/replay.txt" || {
   cat "$work/replay.txt"

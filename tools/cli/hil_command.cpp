@@ -124,6 +124,11 @@ int RunHilCommand(const HilCommandOptions& given) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitUsage;
   }
+  // The plant description on LCM: at the start and on request (AMBDROP_PLANT_REQUEST).
+  if (links.lcm) {
+    links.lcm->PublishPlantDescription(PlantDescriptionJson(*model, options.config_path),
+                                       kPlantDescriptionVersion);
+  }
   HilOptions hil;
   hil.watchdog_timeout_s = options.watchdog_timeout_s;
   try {

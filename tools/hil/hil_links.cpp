@@ -97,6 +97,8 @@ void WriteLcmCounters(JsonWriter& json, const LcmEndpointCounters& c) {
   integer("states_ring_full", c.states_ring_full);
   integer("power_events_published", c.power_events_published);
   integer("power_events_ring_full", c.power_events_ring_full);
+  integer("plant_requests", c.plant_requests);
+  integer("plant_published", c.plant_published);
   integer("publish_rejected", c.publish_rejected);
   integer("publish_errors", c.publish_errors);
   integer("receive_errors", c.receive_errors);
