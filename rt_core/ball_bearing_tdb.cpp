@@ -12,10 +12,10 @@ namespace ambdrop {
 
 BallBearingTdb::BallBearingTdb(const TdbParams& params)
     : TouchdownBearing(params),
-      bearing_(MakeDiscreteBallBearing(params.ball_bearing.bearing)),
-      state_size_(params.ball_bearing.support.enabled ? kStatesElasticSupport
-                                                      : kStatesRigidSupport) {
-  const BallBearingTdbParams& b = params.ball_bearing;
+      bearing_(MakeDiscreteBallBearing(params.ball_bearing().bearing)),
+      state_size_(params.ball_bearing().support.enabled ? kStatesElasticSupport
+                                                        : kStatesRigidSupport) {
+  const BallBearingTdbParams& b = params.ball_bearing();
   const bool support_ok = !b.support.enabled ||
                           (b.support.outer_race_mass_kg > 0.0 &&
                            b.support.stiffness_N_per_m > 0.0 && b.support.damping_N_s_per_m >= 0.0);
@@ -28,7 +28,7 @@ BallBearingTdb::BallBearingTdb(const TdbParams& params)
 }
 
 void BallBearingTdb::InitialState(double* s) const noexcept {
-  const BallBearingTdbParams& b = params_.ball_bearing;
+  const BallBearingTdbParams& b = params_.ball_bearing();
   std::fill(s, s + state_size_, 0.0);
   if (b.support.enabled) {
     // Ks carries both races: Ks y = (mi + mo) g.
@@ -66,7 +66,7 @@ void BallBearingTdb::InitialState(double* s) const noexcept {
 void BallBearingTdb::Evaluate(const JournalMotion& j, const double* s, double* rate,
                               TdbForce* out) const noexcept {
   const TdbParams& p = params_;
-  const BallBearingTdbParams& b = p.ball_bearing;
+  const BallBearingTdbParams& b = p.ball_bearing();
   const double race_speed = s[kRaceSpin];
   const double ix = s[kInnerX], iy = s[kInnerY], ivx = s[kInnerVx], ivy = s[kInnerVy];
   double ox = 0.0, oy = 0.0, ovx = 0.0, ovy = 0.0;

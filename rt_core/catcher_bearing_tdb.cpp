@@ -52,8 +52,8 @@ struct Ring {
 
 CatcherBearingTdb::CatcherBearingTdb(const TdbParams& params)
     : TouchdownBearing(params),
-      inner_bearing_(MakeBallRow(params.catcher.inner_bearing, "inner bearing")) {
-  const CatcherBearingParams& c = params.catcher;
+      inner_bearing_(MakeBallRow(params.catcher().inner_bearing, "inner bearing")) {
+  const CatcherBearingParams& c = params.catcher();
   if (c.decks != 1 && c.decks != 2) {
     throw std::invalid_argument("tdb '" + params.name + "': decks must be 1 or 2");
   }
@@ -81,7 +81,7 @@ CatcherBearingTdb::CatcherBearingTdb(const TdbParams& params)
 }
 
 void CatcherBearingTdb::InitialState(double* s) const noexcept {
-  const CatcherBearingParams& c = params_.catcher;
+  const CatcherBearingParams& c = params_.catcher();
   std::fill(s, s + state_size_, 0.0);
   const double g = -c.gravity_y_m_s2;  // >= 0 with gravity along -y
   const double inner_weight = c.inner_race.mass_kg * g;
@@ -102,7 +102,7 @@ void CatcherBearingTdb::InitialState(double* s) const noexcept {
 void CatcherBearingTdb::Evaluate(const JournalMotion& j, const double* s, double* rate,
                                  TdbForce* out) const noexcept {
   const TdbParams& p = params_;
-  const CatcherBearingParams& c = p.catcher;
+  const CatcherBearingParams& c = p.catcher();
   const double vref = p.friction.regularisation_s_per_m;
   const double wi = s[kSpin];
   const double ix = s[kX], iy = s[kY], ivx = s[kVx], ivy = s[kVy];

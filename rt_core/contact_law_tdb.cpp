@@ -35,7 +35,7 @@ struct SeriesSolution {
 SeriesSolution SolveSeries(const TdbParams& p, const JournalMotion& j, const ContactGeometry& g,
                            double race_speed_rad_s, double ribbon_x_N, double ribbon_y_N,
                            double damping_N_s_per_m) noexcept {
-  const ContactLawParams& c = p.contact_law;
+  const ContactLawParams& c = p.contact_law();
   const double tx = -g.ny, ty = g.nx;
   const double ribbon_n = ribbon_x_N * g.nx + ribbon_y_N * g.ny;
   const double ribbon_t = ribbon_x_N * tx + ribbon_y_N * ty;
@@ -70,8 +70,8 @@ SeriesSolution SolveSeries(const TdbParams& p, const JournalMotion& j, const Con
 }  // namespace
 
 ContactLawTdb::ContactLawTdb(const TdbParams& params)
-    : TouchdownBearing(params), state_size_(StatesOf(params.contact_law.ribbon)) {
-  const ContactLawParams& c = params.contact_law;
+    : TouchdownBearing(params), state_size_(StatesOf(params.contact_law().ribbon)) {
+  const ContactLawParams& c = params.contact_law();
   if ((c.ribbon == ContactLawRibbon::kDahl && !(c.ribbon_damping_N_s_per_m > 0.0)) ||
       (c.ribbon == ContactLawRibbon::kCrossCoupled && !(c.cross_coupled.damping_N_s_per_m > 0.0))) {
     throw std::invalid_argument("tdb '" + params.name +
@@ -86,12 +86,12 @@ void ContactLawTdb::InitialState(double* state) const noexcept {
 
 void ContactLawTdb::Evaluate(const JournalMotion& j, const double* state, double* state_rate,
                              TdbForce* out) const noexcept {
-  if (params_.contact_law.ribbon != ContactLawRibbon::kBilinear) {
+  if (params_.contact_law().ribbon != ContactLawRibbon::kBilinear) {
     EvaluateInSeries(j, state, state_rate, out);
     return;
   }
   const TdbParams& p = params_;
-  const ContactLawParams& c = p.contact_law;
+  const ContactLawParams& c = p.contact_law();
   const double race_speed = state[0];
   const ContactGeometry g = JournalGeometry(p, j);
   const double urs = g.radius_m - p.clearance_m;
@@ -129,7 +129,7 @@ void ContactLawTdb::Evaluate(const JournalMotion& j, const double* state, double
 void ContactLawTdb::EvaluateInSeries(const JournalMotion& j, const double* s, double* rate,
                                      TdbForce* out) const noexcept {
   const TdbParams& p = params_;
-  const ContactLawParams& c = p.contact_law;
+  const ContactLawParams& c = p.contact_law();
   const double race_speed = s[kRaceSpin];
   const double ux = s[kRibbonX], uy = s[kRibbonY];
   // The race's lateral speed is left out of the contact's speeds (class comment).

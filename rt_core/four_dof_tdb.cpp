@@ -14,11 +14,11 @@ namespace ambdrop {
 
 FourDofTdb::FourDofTdb(const TdbParams& params)
     : TouchdownBearing(params),
-      bearing_(BallBearingFromHertz(params.four_dof.bearing)),
-      state_size_(params.four_dof.ribbon == RibbonLaw::kDahl ? kStatesDahl : kStatesKelvinVoigt),
-      inverse_inner_mass_(1.0 / params.four_dof.inner_race_mass_kg),
-      inverse_outer_mass_(1.0 / params.four_dof.outer_race_mass_kg) {
-  const FourDofParams& f = params.four_dof;
+      bearing_(BallBearingFromHertz(params.four_dof().bearing)),
+      state_size_(params.four_dof().ribbon == RibbonLaw::kDahl ? kStatesDahl : kStatesKelvinVoigt),
+      inverse_inner_mass_(1.0 / params.four_dof().inner_race_mass_kg),
+      inverse_outer_mass_(1.0 / params.four_dof().outer_race_mass_kg) {
+  const FourDofParams& f = params.four_dof();
   if (!(f.inner_race_mass_kg > 0.0) || !(f.outer_race_mass_kg > 0.0)) {
     throw std::invalid_argument("tdb '" + params.name + "': race masses must be positive");
   }
@@ -29,7 +29,7 @@ FourDofTdb::FourDofTdb(const TdbParams& params)
 }
 
 void FourDofTdb::InitialState(double* s) const noexcept {
-  const FourDofParams& f = params_.four_dof;
+  const FourDofParams& f = params_.four_dof();
   std::fill(s, s + state_size_, 0.0);
   // Both races' weight rests on the ribbon, the inner race's on the bearing.
   const double races_weight_N = (f.inner_race_mass_kg + f.outer_race_mass_kg) * f.gravity_y_m_s2;
@@ -59,7 +59,7 @@ void FourDofTdb::InitialState(double* s) const noexcept {
 void FourDofTdb::Evaluate(const JournalMotion& j, const double* s, double* rate,
                           TdbForce* out) const noexcept {
   const TdbParams& p = params_;
-  const FourDofParams& f = p.four_dof;
+  const FourDofParams& f = p.four_dof();
   const double race_speed = s[kRaceSpin];
   const double ix = s[kInnerX], iy = s[kInnerY], ivx = s[kInnerVx], ivy = s[kInnerVy];
   const double ox = s[kOuterX], oy = s[kOuterY], ovx = s[kOuterVx], ovy = s[kOuterVy];

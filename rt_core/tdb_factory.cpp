@@ -10,7 +10,7 @@
 namespace ambdrop {
 
 std::unique_ptr<TouchdownBearing> MakeTouchdownBearing(const TdbParams& params) {
-  switch (params.model) {
+  switch (params.model()) {
     case TdbModelKind::kContactLaw:
       return std::make_unique<ContactLawTdb>(params);
     case TdbModelKind::kFourDof:

@@ -1,5 +1,6 @@
 #pragma once
 #include <string>
+#include <variant>
 
 #include "rt_core/ball_bearing_tdb_params.hpp"
 #include "rt_core/catcher_bearing_params.hpp"
@@ -70,6 +71,12 @@ enum class TdbModelKind {
   kCatcherBearing,  ///< seed 003 SDCB/DDCB, seed 004 metal rubber ring (CatcherBearingTdb)
 };
 
+/// What one TDB model reads beyond the common geometry, friction, spin and misalignment: one
+/// struct per model, and a TdbParams holds exactly one of them (its model), so a model's code
+/// cannot reach another's numbers. The alternatives are in TdbModelKind's order.
+using TdbModelParams =
+    std::variant<ContactLawParams, FourDofParams, BallBearingTdbParams, CatcherBearingParams>;
+
 struct TdbParams {
   std::string name;
   double position_m = 0.0;
@@ -80,14 +87,30 @@ struct TdbParams {
   /// is also the config's default. Contact geometry (penetration, Hertz radii) keeps clearance_m:
   /// this radius only says which surface speed the race has, a convention simulators differ on.
   double inner_race_radius_m = 0.0;
-  TdbModelKind model = TdbModelKind::kContactLaw;
-  ContactLawParams contact_law;
-  FourDofParams four_dof;
-  BallBearingTdbParams ball_bearing;  ///< model = "ball_bearing_tdb"
-  CatcherBearingParams catcher;       ///< model = kCatcherBearing
+  TdbModelParams model_params;  ///< the model and its own parameters (contact law by default)
   FrictionParams friction;
   TdbSpinParams spin;
   MisalignmentParams misalignment;
+
+  TdbModelKind model() const noexcept { return static_cast<TdbModelKind>(model_params.index()); }
+  /// The model's own parameters; std::bad_variant_access for another model's.
+  const ContactLawParams& contact_law() const { return std::get<ContactLawParams>(model_params); }
+  ContactLawParams& contact_law() { return std::get<ContactLawParams>(model_params); }
+  const FourDofParams& four_dof() const { return std::get<FourDofParams>(model_params); }
+  FourDofParams& four_dof() { return std::get<FourDofParams>(model_params); }
+  const BallBearingTdbParams& ball_bearing() const {
+    return std::get<BallBearingTdbParams>(model_params);
+  }
+  BallBearingTdbParams& ball_bearing() { return std::get<BallBearingTdbParams>(model_params); }
+  const CatcherBearingParams& catcher() const {
+    return std::get<CatcherBearingParams>(model_params);
+  }
+  CatcherBearingParams& catcher() { return std::get<CatcherBearingParams>(model_params); }
+  /// Makes this a TDB of that model, its parameters the defaults, and returns them.
+  ContactLawParams& UseContactLaw() { return model_params.emplace<ContactLawParams>(); }
+  FourDofParams& UseFourDof() { return model_params.emplace<FourDofParams>(); }
+  BallBearingTdbParams& UseBallBearing() { return model_params.emplace<BallBearingTdbParams>(); }
+  CatcherBearingParams& UseCatcher() { return model_params.emplace<CatcherBearingParams>(); }
 };
 
 }  // namespace ambdrop

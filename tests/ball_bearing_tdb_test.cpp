@@ -45,11 +45,11 @@ DiscreteBallParams ChenBalls() {
 TdbParams Tdb(bool support = false) {
   TdbParams p;
   p.name = std::string(1, 't');  // not = "t": GCC 12 warns falsely (-Wrestrict, PR 105329)
-  p.model = TdbModelKind::kBallBearing;
+  p.UseBallBearing();
   p.journal_radius_m = 0.0299;
   p.clearance_m = 1e-4;
   p.spin = {true, 6e-5, 0.0, 0.0, 0.0, 0.0};
-  BallBearingTdbParams& b = p.ball_bearing;
+  BallBearingTdbParams& b = p.ball_bearing();
   b.inner_race_mass_kg = 0.08;
   b.line_contact = {208e9, 0.013};
   b.friction = {SlipFrictionLaw::kStaticKinetic, 0.15, 0.1, 1e-3};
@@ -155,7 +155,7 @@ TEST(DiscreteBalls, LinearisedAtTheStaticLoadGivesThePapersKb) {
 TEST(BallBearingTdb, StateSizeAndStaticEquilibriumUnderGravity) {
   for (const bool support : {false, true}) {
     TdbParams p = Tdb(support);
-    p.ball_bearing.gravity_y_m_s2 = -9.81;
+    p.ball_bearing().gravity_y_m_s2 = -9.81;
     const BallBearingTdb tdb(p);
     EXPECT_EQ(tdb.StateSize(), support ? 10 : 6);
     States s{}, rate{};
@@ -176,7 +176,7 @@ TEST(BallBearingTdb, StateSizeAndStaticEquilibriumUnderGravity) {
 TEST(BallBearingTdb, InitialStateUsesOnlyItsOwnStates) {
   for (const bool support : {false, true}) {
     TdbParams p = Tdb(support);
-    p.ball_bearing.gravity_y_m_s2 = -9.81;
+    p.ball_bearing().gravity_y_m_s2 = -9.81;
     const BallBearingTdb tdb(p);
     States clean{}, dirty{};
     dirty.fill(std::numeric_limits<double>::quiet_NaN());
@@ -235,7 +235,7 @@ TEST(BallBearingTdb, SpinOnlySlipFeedsABackwardWhirlThatContactPointSlipBrakes) 
   EXPECT_LT(-f.tangential_force_N * (-0.2), 0.0);
 
   TdbParams literal = Tdb();
-  literal.ball_bearing.friction.slip_speeds = SlipSpeeds::kSpinOnly;
+  literal.ball_bearing().friction.slip_speeds = SlipSpeeds::kSpinOnly;
   const BallBearingTdb spin_only(literal);
   spin_only.Evaluate(j, s.data(), rate.data(), &f);
   // vs - vi = 0.3 m/s: +mu_d fn on the race, the rotor pushed along -t, with its whirl.
@@ -286,14 +286,14 @@ double LineContactEnergy(const TdbParams& p, double deflection) {
   for (int i = 0; i <= n; ++i) {
     const double u = i * h;
     const double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
-    sum += w * LineContactForce(p.ball_bearing.line_contact, p.clearance_m, u * u) * 2.0 * u;
+    sum += w * LineContactForce(p.ball_bearing().line_contact, p.clearance_m, u * u) * 2.0 * u;
   }
   return sum * h / 3.0;
 }
 
 double Energy(const BallBearingTdb& tdb, const Impact& m) {
   const TdbParams& p = tdb.params();
-  const BallBearingTdbParams& b = p.ball_bearing;
+  const BallBearingTdbParams& b = p.ball_bearing();
   const double* s = m.y.data() + 5;
   auto sq = [](double a, double c) { return a * a + c * c; };
   double e = 0.5 * m.mass_kg * sq(m.y[2], m.y[3]) + 0.5 * m.polar_inertia_kg_m2 * m.y[4] * m.y[4];
@@ -349,7 +349,7 @@ TEST(BallBearingTdbEnergy, DissipativeContactNeverAddsEnergy) {
   };
   for (int trial = 0; trial < 10; ++trial) {
     TdbParams p = Tdb(trial % 2 == 1);
-    BallBearingTdbParams& b = p.ball_bearing;
+    BallBearingTdbParams& b = p.ball_bearing();
     // The ball set's potential moves with the cage, which the model turns kinematically
     // (no torque from it): hold the cage still so that the energy balance is closed.
     b.bearing.cage_rotation = false;
@@ -401,7 +401,7 @@ Impact RunSteps(const BallBearingTdb& tdb, int steps) {
 
 TEST(BallBearingTdbStep, AllocationFreeAndBitIdentical) {
   TdbParams p = Tdb(true);
-  p.ball_bearing.gravity_y_m_s2 = -9.81;
+  p.ball_bearing().gravity_y_m_s2 = -9.81;
   const BallBearingTdb tdb(p);
   Impact a{}, b{};
   {

@@ -68,11 +68,11 @@ TEST(ImpactFunction, LineContactExponentTenNinthsWithEquationTwoStiffness) {
 TdbParams Catcher(int decks, CatcherMount mount) {
   TdbParams p;
   p.name = std::string(1, 'c');  // not = "c": GCC 12 warns falsely (-Wrestrict, PR 105329)
-  p.model = TdbModelKind::kCatcherBearing;
+  p.UseCatcher();
   p.journal_radius_m = 5.875e-3;
   p.clearance_m = 0.125e-3;
   p.friction = {FrictionLaw::kRegularisedCoulomb, 0.1, 200.0, 0.0};
-  CatcherBearingParams& c = p.catcher;
+  CatcherBearingParams& c = p.catcher();
   c.decks = decks;
   c.mount = mount;
   c.impact = {LineContactStiffness(0.01), 10.0 / 9.0, 1000.0, 1e-5};
@@ -138,7 +138,7 @@ TEST(CatcherBearing, StartsInStaticEquilibriumUnderGravity) {
   for (int decks : {1, 2}) {
     for (CatcherMount mount : {CatcherMount::kRigid, CatcherMount::kMetalRubberRing}) {
       TdbParams p = Catcher(decks, mount);
-      p.catcher.gravity_y_m_s2 = -9.81;
+      p.catcher().gravity_y_m_s2 = -9.81;
       const C tdb(p);
       States s{}, rate{};
       tdb.InitialState(s.data());
@@ -180,7 +180,7 @@ double BallEnergy(const BallRow& r, double dx, double dy) {
 // Kinetic energy of journal, races, house and spins plus the contacts' and ring's elastic energy.
 double Energy(const C& tdb, double mass, double inertia, const Y& y) {
   const TdbParams& p = tdb.params();
-  const CatcherBearingParams& c = p.catcher;
+  const CatcherBearingParams& c = p.catcher();
   const double* s = y.data() + kY0;
   auto sq = [](double a, double b) { return a * a + b * b; };
   double e = 0.5 * mass * sq(y[2], y[3]) + 0.5 * inertia * y[4] * y[4];
@@ -239,11 +239,11 @@ TEST(CatcherBearingEnergy, RandomisedImpactsNeverGainEnergy) {
     for (CatcherMount mount : {CatcherMount::kRigid, CatcherMount::kMetalRubberRing}) {
       for (int k = 0; k < 3; ++k, ++trial) {
         TdbParams p = Catcher(decks, mount);
-        p.catcher.ball_passage = false;
-        p.catcher.impact.exponent = uniform() < 0.5 ? 1.5 : 10.0 / 9.0;
-        p.catcher.impact.max_damping_N_s_per_m = 2000.0 * uniform();
+        p.catcher().ball_passage = false;
+        p.catcher().impact.exponent = uniform() < 0.5 ? 1.5 : 10.0 / 9.0;
+        p.catcher().impact.max_damping_N_s_per_m = 2000.0 * uniform();
         p.friction.coefficient = 0.3 * uniform();
-        p.catcher.ring.damping_N_s_per_m = 1e4 * uniform();
+        p.catcher().ring.damping_N_s_per_m = 1e4 * uniform();
         const C tdb(p);
         const double mass = 0.5 + 2.0 * uniform();
         const double inertia = 1e-4 + 1e-3 * uniform();
@@ -294,8 +294,8 @@ Model Rig(int variant) {
   if (variant == 2) {  // the largest layout: two decks on the metal rubber ring (16 states)
     p = testing::LoadTestConfig("ddcb_rigid.toml", {"trigger.time_s=0.001"});
     for (TdbParams& t : p.tdbs) {
-      t.catcher.mount = CatcherMount::kMetalRubberRing;
-      t.catcher.ring = {0.35, 1e6, 1e4};
+      t.catcher().mount = CatcherMount::kMetalRubberRing;
+      t.catcher().ring = {0.35, 1e6, 1e4};
     }
   }
   return BuildModel(p);

@@ -28,8 +28,8 @@ TEST(ConfigFourDof, Model2ReadsAsWritten) {
   const ModelParams p = testing::LoadTestConfig("jarroux2019_industrial_model2.toml");
   ASSERT_EQ(p.tdbs.size(), 2u);
   for (const TdbParams& t : p.tdbs) {
-    EXPECT_EQ(t.model, TdbModelKind::kFourDof);
-    const FourDofParams& f = t.four_dof;
+    EXPECT_EQ(t.model(), TdbModelKind::kFourDof);
+    const FourDofParams& f = t.four_dof();
     EXPECT_EQ(f.ribbon, RibbonLaw::kKelvinVoigt);
     EXPECT_EQ(f.bearing.law, BearingLaw::kHertzLinearised);
     EXPECT_DOUBLE_EQ(f.inner_race_mass_kg, 0.4);
@@ -46,10 +46,10 @@ TEST(ConfigFourDof, Model3SelectsTheDahlRibbon) {
   const ModelParams p = testing::LoadTestConfig("jarroux2019_industrial_model3.toml",
                                                 {"tdb.de.four_dof.dahl.threshold_scale=0.5"});
   const TdbParams& de = p.tdbs.at(0).name == "de" ? p.tdbs.at(0) : p.tdbs.at(1);
-  EXPECT_EQ(de.four_dof.ribbon, RibbonLaw::kDahl);
-  EXPECT_DOUBLE_EQ(de.four_dof.dahl.slipping_threshold_N, 1000.0);
-  EXPECT_DOUBLE_EQ(de.four_dof.dahl.threshold_scale, 0.5);
-  EXPECT_DOUBLE_EQ(de.four_dof.dahl.beta_per_m, 1.0e6);
+  EXPECT_EQ(de.four_dof().ribbon, RibbonLaw::kDahl);
+  EXPECT_DOUBLE_EQ(de.four_dof().dahl.slipping_threshold_N, 1000.0);
+  EXPECT_DOUBLE_EQ(de.four_dof().dahl.threshold_scale, 0.5);
+  EXPECT_DOUBLE_EQ(de.four_dof().dahl.beta_per_m, 1.0e6);
 }
 
 TEST(ConfigFourDof, SwitchesSelectTheLaws) {
@@ -57,11 +57,11 @@ TEST(ConfigFourDof, SwitchesSelectTheLaws) {
       testing::LoadTestConfig("jarroux2019_industrial_model2.toml",
                               {"tdb.de.four_dof.bearing_law=\"hertz\"", "gravity.enabled=false"});
   const TdbParams& de = p.tdbs.at(0).name == "de" ? p.tdbs.at(0) : p.tdbs.at(1);
-  EXPECT_EQ(de.four_dof.bearing.law, BearingLaw::kHertz);
-  EXPECT_EQ(de.four_dof.gravity_y_m_s2, 0.0);
+  EXPECT_EQ(de.four_dof().bearing.law, BearingLaw::kHertz);
+  EXPECT_EQ(de.four_dof().gravity_y_m_s2, 0.0);
   // The base's contact-law TDB keeps its model unless told.
   const ModelParams base = testing::LoadTestConfig("jarroux2019_industrial.toml");
-  EXPECT_EQ(base.tdbs.at(0).model, TdbModelKind::kContactLaw);
+  EXPECT_EQ(base.tdbs.at(0).model(), TdbModelKind::kContactLaw);
 }
 
 TEST(ConfigFourDof, ErrorsNameFileLineKeyAndExpectation) {

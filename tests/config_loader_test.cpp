@@ -339,9 +339,9 @@ TEST(ConfigLoader, FullFlexibleReadsEveryTable) {
   EXPECT_EQ(tdb.name, "de");
   EXPECT_DOUBLE_EQ(tdb.clearance_m, 2e-4);
   EXPECT_DOUBLE_EQ(tdb.journal_radius_m, 0.02);
-  EXPECT_EQ(tdb.model, TdbModelKind::kContactLaw);
-  EXPECT_DOUBLE_EQ(tdb.contact_law.bearing_stiffness_N_per_m, 1e8);
-  EXPECT_DOUBLE_EQ(tdb.contact_law.ribbon_crushing_m, 1e-4);
+  EXPECT_EQ(tdb.model(), TdbModelKind::kContactLaw);
+  EXPECT_DOUBLE_EQ(tdb.contact_law().bearing_stiffness_N_per_m, 1e8);
+  EXPECT_DOUBLE_EQ(tdb.contact_law().ribbon_crushing_m, 1e-4);
   EXPECT_EQ(tdb.friction.law, FrictionLaw::kRegularisedCoulomb);
   EXPECT_DOUBLE_EQ(tdb.friction.coefficient, 0.3);
   EXPECT_DOUBLE_EQ(tdb.friction.whirl_damping_N_s_per_m, 5.0);

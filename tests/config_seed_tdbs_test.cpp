@@ -26,12 +26,12 @@ std::string ErrorOf(const std::string& file, const std::vector<std::string>& ove
 
 TEST(ConfigSeedTdbs, SlipSpeedsDefaultToTheContactPoint) {
   const std::string rig = testing::ConfigPath("chen_itri_flexible.toml");
-  EXPECT_EQ(LoadConfig(rig).params.tdbs[0].ball_bearing.friction.slip_speeds,
+  EXPECT_EQ(LoadConfig(rig).params.tdbs[0].ball_bearing().friction.slip_speeds,
             SlipSpeeds::kContactPoint);
   const ModelParams literal =
       LoadConfig(rig, {"tdb.rear.ball_bearing_tdb.friction.slip_speeds=\"spin_only\""}).params;
-  EXPECT_EQ(literal.tdbs[0].ball_bearing.friction.slip_speeds, SlipSpeeds::kContactPoint);
-  EXPECT_EQ(literal.tdbs[1].ball_bearing.friction.slip_speeds, SlipSpeeds::kSpinOnly);
+  EXPECT_EQ(literal.tdbs[0].ball_bearing().friction.slip_speeds, SlipSpeeds::kContactPoint);
+  EXPECT_EQ(literal.tdbs[1].ball_bearing().friction.slip_speeds, SlipSpeeds::kSpinOnly);
 }
 
 // The ball-bearing TDB's journal friction is its own table; of the common [friction] it reads

@@ -32,7 +32,7 @@ TdbParams Series(ContactLawRibbon ribbon) {
   p.name = std::string(1, 't');  // not = "t": GCC 12 warns falsely (-Wrestrict, PR 105329)
   p.journal_radius_m = 0.05;
   p.clearance_m = kClearance;
-  ContactLawParams& c = p.contact_law;
+  ContactLawParams& c = p.contact_law();
   c.bearing_stiffness_N_per_m = 2e7;
   c.bearing_damping_N_s_per_m = 2e3;
   c.ribbon_damping_N_s_per_m = 7e3;
@@ -67,7 +67,7 @@ TEST(ContactLawRibbon, StateSizePerRibbon) {
   EXPECT_EQ(ContactLawTdb(Series(ContactLawRibbon::kCrossCoupled)).StateSize(), 3);
   EXPECT_EQ(ContactLawTdb(Series(ContactLawRibbon::kDahl)).StateSize(), 5);
   TdbParams p = Series(ContactLawRibbon::kDahl);
-  p.contact_law.ribbon_damping_N_s_per_m = 0.0;  // a massless race needs it
+  p.contact_law().ribbon_damping_N_s_per_m = 0.0;  // a massless race needs it
   EXPECT_THROW(ContactLawTdb{p}, std::invalid_argument);
 }
 
@@ -77,8 +77,8 @@ TEST(ContactLawRibbon, StateSizePerRibbon) {
 TEST(ContactLawRibbon, DahlStaticLoadSettlesAtTheSeriesDeflection) {
   const TdbParams p = Series(ContactLawRibbon::kDahl);
   const ContactLawTdb tdb(p);
-  const DahlRibbonParams& dahl = p.contact_law.dahl;
-  const double kb = p.contact_law.bearing_stiffness_N_per_m;
+  const DahlRibbonParams& dahl = p.contact_law().dahl;
+  const double kb = p.contact_law().bearing_stiffness_N_per_m;
   const double d = 60e-6;
   std::vector<double> state(tdb.StateSize());
   tdb.InitialState(state.data());
@@ -112,8 +112,8 @@ TEST(ContactLawRibbon, DahlStaticLoadSettlesAtTheSeriesDeflection) {
 // the cycle never returns energy.
 TEST(ContactLawRibbon, DahlLoadUnloadCycleDissipates) {
   TdbParams p = Series(ContactLawRibbon::kDahl);
-  p.contact_law.dahl.upper_hardening_N = 0.0;
-  p.contact_law.dahl.lower_hardening_N = 0.0;
+  p.contact_law().dahl.upper_hardening_N = 0.0;
+  p.contact_law().dahl.lower_hardening_N = 0.0;
   const ContactLawTdb tdb(p);
   const double period = 0.5, d_max = 80e-6, w = 2.0 * std::numbers::pi / period;
   const auto journal = [&](double t) {
@@ -130,7 +130,7 @@ TEST(ContactLawRibbon, DahlLoadUnloadCycleDissipates) {
     u_min = std::min(u_min, -state[ContactLawTdb::kRibbonY]);
     u_max = std::max(u_max, -state[ContactLawTdb::kRibbonY]);
   }
-  const double loop = 2.0 * DahlSlippingThreshold(p.contact_law.dahl) * (u_max - u_min);
+  const double loop = 2.0 * DahlSlippingThreshold(p.contact_law().dahl) * (u_max - u_min);
   EXPECT_GT(u_max - u_min, 20e-6);
   EXPECT_GT(work, 0.9 * loop);
   EXPECT_LT(work, 1.15 * loop);  // the loop plus the slow cycle's viscous losses
@@ -140,7 +140,7 @@ TEST(ContactLawRibbon, DahlLoadUnloadCycleDissipates) {
 // w (rad/s, > 0 along +spin), friction off.
 double MeanWhirlForce(double eta, double w) {
   TdbParams p = Series(ContactLawRibbon::kCrossCoupled);
-  p.contact_law.cross_coupled.cross_coupling = eta;
+  p.contact_law().cross_coupled.cross_coupling = eta;
   const ContactLawTdb tdb(p);
   const double r = kClearance + 30e-6;
   const auto journal = [&](double t) {
@@ -183,8 +183,8 @@ TEST(ContactLawRibbon, WhirlDampingOnEveryRibbon) {
   for (ContactLawRibbon ribbon :
        {ContactLawRibbon::kBilinear, ContactLawRibbon::kDahl, ContactLawRibbon::kCrossCoupled}) {
     TdbParams p = Series(ribbon);
-    p.contact_law.ribbon_stiffness_N_per_m = 5e6;
-    p.contact_law.ribbon_crushing_m = 0.1e-3;
+    p.contact_law().ribbon_stiffness_N_per_m = 5e6;
+    p.contact_law().ribbon_crushing_m = 0.1e-3;
     p.friction.whirl_damping_N_s_per_m = 500.0;
     const ContactLawTdb tdb(p);
     std::vector<double> state(tdb.StateSize()), rate(tdb.StateSize());
@@ -258,9 +258,9 @@ const std::vector<std::string> kDahlKeys = {
 
 TEST(ConfigContactLawRibbon, BilinearByDefaultAndTheSwitchReadsItsTable) {
   const ModelParams shipped = testing::LoadTestConfig("jarroux2019_industrial.toml");
-  EXPECT_EQ(Nde(shipped).contact_law.ribbon, ContactLawRibbon::kBilinear);
+  EXPECT_EQ(Nde(shipped).contact_law().ribbon, ContactLawRibbon::kBilinear);
   const ContactLawParams dahl =
-      Nde(testing::LoadTestConfig("jarroux2019_industrial.toml", kDahlKeys)).contact_law;
+      Nde(testing::LoadTestConfig("jarroux2019_industrial.toml", kDahlKeys)).contact_law();
   EXPECT_EQ(dahl.ribbon, ContactLawRibbon::kDahl);
   EXPECT_EQ(dahl.dahl.beta_per_m, 1e7);
   EXPECT_EQ(dahl.dahl.threshold_scale, 1.0);
@@ -271,7 +271,7 @@ TEST(ConfigContactLawRibbon, BilinearByDefaultAndTheSwitchReadsItsTable) {
                                    "tdb.nde.contact_law.cross_coupled.stiffness_N_per_m=5e6",
                                    "tdb.nde.contact_law.cross_coupled.cross_coupling=0.3",
                                    "tdb.nde.contact_law.cross_coupled.damping_N_s_per_m=2e3"}))
-          .contact_law;
+          .contact_law();
   EXPECT_EQ(cc.ribbon, ContactLawRibbon::kCrossCoupled);
   EXPECT_EQ(cc.cross_coupled.cross_coupling, 0.3);
   EXPECT_EQ(cc.cross_coupled.sign_regularisation_s_per_m, 100.0);

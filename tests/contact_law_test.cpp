@@ -14,7 +14,7 @@ TdbParams Tdb() {
   p.name = std::string(1, 't');  // not = "t": GCC 12 warns falsely (-Wrestrict, PR 105329)
   p.journal_radius_m = 0.05;
   p.clearance_m = 0.2e-3;
-  p.contact_law = {2e8, 2e3, 5e6, 7e3, 0.1e-3, ContactLawRibbon::kBilinear, {}, {}};
+  p.contact_law() = {2e8, 2e3, 5e6, 7e3, 0.1e-3, ContactLawRibbon::kBilinear, {}, {}};
   p.friction = {FrictionLaw::kRegularisedCoulomb, 0.2, 200.0, 500.0};
   p.spin = {true, 2.2e-3, 1e-4, 0.0, 0.0, 0.0};
   return p;

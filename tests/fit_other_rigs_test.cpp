@@ -164,8 +164,8 @@ TEST(FitOtherRigs, TheLibraryOffersWhatEachTdbModelUses) {
     if (e.name != "friction_coefficient") continue;
     const ModelParams p = WithEffects(variants, {&e}, {{0.2}});
     for (std::size_t i = 0; i < p.tdbs.size(); ++i) {
-      const SlipFrictionParams& declared = flexible.tdbs[i].ball_bearing.friction;
-      const SlipFrictionParams& fitted = p.tdbs[i].ball_bearing.friction;
+      const SlipFrictionParams& declared = flexible.tdbs[i].ball_bearing().friction;
+      const SlipFrictionParams& fitted = p.tdbs[i].ball_bearing().friction;
       EXPECT_EQ(fitted.kinetic_coefficient, 0.2);
       EXPECT_NEAR(fitted.static_coefficient / fitted.kinetic_coefficient,
                   declared.static_coefficient / declared.kinetic_coefficient, 1e-12);

@@ -22,12 +22,12 @@ TdbParams Tdb(RibbonLaw ribbon = RibbonLaw::kKelvinVoigt,
               BearingLaw bearing = BearingLaw::kHertzLinearised) {
   TdbParams p;
   p.name = std::string(1, 't');  // not = "t": GCC 12 warns falsely (-Wrestrict, PR 105329)
-  p.model = TdbModelKind::kFourDof;
+  p.UseFourDof();
   p.journal_radius_m = 0.06;
   p.clearance_m = 0.25e-3;
   p.friction = {FrictionLaw::kRegularisedCoulomb, 0.2, 200.0, 0.0};
   p.spin = {true, 2.2e-3, 1e-4, 0.0, 0.0, 0.0};
-  FourDofParams& f = p.four_dof;
+  FourDofParams& f = p.four_dof();
   f.inner_race_mass_kg = 0.4;
   f.outer_race_mass_kg = 0.5;
   f.ribbon_clearance_m = 0.146e-3;
@@ -52,7 +52,7 @@ TEST(FourDofTdb, RacesStartInStaticEquilibriumUnderGravity) {
   for (const RibbonLaw ribbon : {RibbonLaw::kKelvinVoigt, RibbonLaw::kDahl}) {
     for (const BearingLaw law : {BearingLaw::kHertzLinearised, BearingLaw::kHertz}) {
       TdbParams p = Tdb(ribbon, law);
-      p.four_dof.gravity_y_m_s2 = -9.81;
+      p.four_dof().gravity_y_m_s2 = -9.81;
       const FourDofTdb tdb(p);
       States s{}, rate{};
       tdb.InitialState(s.data());
@@ -139,7 +139,7 @@ TEST(FourDofTdb, OuterRaceMeetsTheHousingBeyondTheRibbonClearance) {
 
 TEST(FourDofTdb, DahlRibbonForceIsAStateWithItsRate) {
   const FourDofTdb tdb(Tdb(RibbonLaw::kDahl));
-  const DahlRibbonParams& d = tdb.params().four_dof.dahl;
+  const DahlRibbonParams& d = tdb.params().four_dof().dahl;
   States s{}, rate{};
   // Both races together (no bearing force), loading along x; along y below the centre but
   // moving up, so u' > 0 still selects the upper envelope.
@@ -187,7 +187,7 @@ TEST(FourDofTdb, ForcesBalanceBetweenRotorRacesAndHousing) {
   };
   for (const RibbonLaw ribbon : {RibbonLaw::kKelvinVoigt, RibbonLaw::kDahl}) {
     TdbParams p = Tdb(ribbon, BearingLaw::kHertz);
-    p.four_dof.gravity_y_m_s2 = -9.81;
+    p.four_dof().gravity_y_m_s2 = -9.81;
     const FourDofTdb tdb(p);
     for (int trial = 0; trial < 200; ++trial) {
       States s{}, rate{};
@@ -222,7 +222,7 @@ struct Impact {
 // springs' (bearing, ribbon, Hunt-Crossley elastic parts).
 double Energy(const FourDofTdb& tdb, const Impact& m) {
   const TdbParams& p = tdb.params();
-  const FourDofParams& f = p.four_dof;
+  const FourDofParams& f = p.four_dof();
   const double* s = m.y.data() + 5;
   auto sq = [](double a, double b) { return a * a + b * b; };
   double e = 0.5 * m.mass_kg * sq(m.y[2], m.y[3]) + 0.5 * m.polar_inertia_kg_m2 * m.y[4] * m.y[4];
@@ -286,9 +286,9 @@ void RandomImpacts(RibbonLaw ribbon, BearingLaw bearing, std::uint64_t seed) {
     TdbParams p = Tdb(ribbon, bearing);
     p.friction.coefficient = 0.4 * uniform();
     p.friction.whirl_damping_N_s_per_m = 500.0 * uniform();
-    p.four_dof.inner_contact.damping_s_per_m = 0.5 * uniform();
-    p.four_dof.kelvin_voigt.damping_N_s_per_m = 1e4 * uniform();
-    p.four_dof.bearing.damping_factor = 0.25 + 2.25 * uniform();
+    p.four_dof().inner_contact.damping_s_per_m = 0.5 * uniform();
+    p.four_dof().kelvin_voigt.damping_N_s_per_m = 1e4 * uniform();
+    p.four_dof().bearing.damping_factor = 0.25 + 2.25 * uniform();
     const FourDofTdb tdb(p);
     Impact m{10.0 + 190.0 * uniform(), 0.1 + uniform(), {}};
     const double angle = 2.0 * kPi * uniform();
@@ -352,8 +352,8 @@ TEST(FourDofTdb, HousingContactSwitchedOffLetsTheOuterRaceTravelOn) {
     TdbParams p = Tdb();
     // A large load on the races: their weight under 1000 m/s^2 on the ribbon is 900 N, which
     // the ribbon alone (5e6 N/m) carries at 0.18 mm, beyond the 0.146 mm clearance.
-    p.four_dof.gravity_y_m_s2 = -1000.0;
-    p.four_dof.housing_contact_enabled = housing;
+    p.four_dof().gravity_y_m_s2 = -1000.0;
+    p.four_dof().housing_contact_enabled = housing;
     const FourDofTdb tdb(p);
     States s{}, rate{};
     TdbForce f;

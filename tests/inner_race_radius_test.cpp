@@ -131,7 +131,7 @@ TEST(InnerRaceRadius, ErrorsNameKeyAndWhy) {
 JournalMotion PressedJournal(const TdbParams& p, const double* state, double depth_m,
                              double spin_rad_s) {
   double race_y = 0.0;
-  if (p.model != TdbModelKind::kContactLaw) race_y = state[2];
+  if (p.model() != TdbModelKind::kContactLaw) race_y = state[2];
   const double centre_y = p.misalignment.enabled ? p.misalignment.y_m : 0.0;
   const double centre_x = p.misalignment.enabled ? p.misalignment.x_m : 0.0;
   return {centre_x, centre_y + race_y - (p.clearance_m + depth_m), 0.0, 0.0, spin_rad_s};

@@ -198,12 +198,12 @@ damping_s_per_m = 0.2              # assumed
 )";
   LoadedConfig loaded;
   ASSERT_EQ(LoadEdited(dir, "jarroux2019_industrial_model2.toml", {}, &loaded), "no error");
-  EXPECT_TRUE(loaded.params.tdbs[0].four_dof.housing_contact_enabled);  // the default
+  EXPECT_TRUE(loaded.params.tdbs[0].four_dof().housing_contact_enabled);  // the default
   ASSERT_EQ(LoadEdited(dir, "jarroux2019_industrial_model2.toml",
                        {{nde, "[tdb.nde.four_dof.housing_contact]\nenabled = false\n"}}, &loaded),
             "no error");
   for (const TdbParams& tdb : loaded.params.tdbs) {
-    EXPECT_EQ(tdb.four_dof.housing_contact_enabled, tdb.name != "nde") << tdb.name;
+    EXPECT_EQ(tdb.four_dof().housing_contact_enabled, tdb.name != "nde") << tdb.name;
   }
   EXPECT_THAT(
       LoadEdited(dir, "jarroux2019_industrial_model2.toml",

@@ -26,7 +26,7 @@ ModelParams DropRig() {
     t.position_m = z;
     t.journal_radius_m = 0.04;
     t.clearance_m = 0.2e-3;
-    t.contact_law = {2e8, 2e3, 5e6, 7e3, 0.05e-3, ContactLawRibbon::kBilinear, {}, {}};
+    t.contact_law() = {2e8, 2e3, 5e6, 7e3, 0.05e-3, ContactLawRibbon::kBilinear, {}, {}};
     p.tdbs.push_back(t);
   }
   return p;
@@ -56,7 +56,7 @@ TEST(RigidDrop, FirstContactAtFreeFallTime) {
 TEST(RigidDrop, SettlesAtTheContactLawStaticPenetration) {
   for (double crushing_m : {0.05e-3, 0.2e-3}) {  // crushed ribbon, and ribbon alone
     ModelParams p = DropRig();
-    for (auto& t : p.tdbs) t.contact_law.ribbon_crushing_m = crushing_m;
+    for (auto& t : p.tdbs) t.contact_law().ribbon_crushing_m = crushing_m;
     const Model model = BuildModel(p);
     Simulator sim(model);
     State s = sim.InitialState();
@@ -64,7 +64,7 @@ TEST(RigidDrop, SettlesAtTheContactLawStaticPenetration) {
     for (int i = 0; i < 300000; ++i) ASSERT_EQ(sim.Step(&s, off), StepStatus::kOk);
     Observation obs;
     sim.Observe(s, &obs);
-    const ContactLawParams& c = p.tdbs[0].contact_law;
+    const ContactLawParams& c = p.tdbs[0].contact_law();
     const double share_N = 100.0 * 9.81 / 2.0;
     const double expected =
         share_N < c.ribbon_stiffness_N_per_m * c.ribbon_crushing_m

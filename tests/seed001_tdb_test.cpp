@@ -33,12 +33,12 @@ constexpr double kPi = std::numbers::pi;
 TdbParams Tdb(BearingLaw bearing = BearingLaw::kHertzLinearised) {
   TdbParams p;
   p.name = std::string(1, 't');  // not = "t": GCC 12 warns falsely (-Wrestrict, PR 105329)
-  p.model = TdbModelKind::kFourDof;
+  p.UseFourDof();
   p.journal_radius_m = 0.06;
   p.clearance_m = 0.25e-3;
   p.friction = {FrictionLaw::kRegularisedCoulomb, 0.2, 200.0, 0.0};
   p.spin = {true, 2.2e-3, 1e-4, 0.0, 0.0, 0.0};
-  FourDofParams& f = p.four_dof;
+  FourDofParams& f = p.four_dof();
   f.inner_race_mass_kg = 0.4;
   f.outer_race_mass_kg = 0.5;
   f.ribbon_clearance_m = 0.146e-3;
@@ -146,7 +146,7 @@ TEST(FourDofCrossCoupled, HousingContactOnceTheRibbonClearanceIsUsed) {
 
 TEST(QuadraticBearing, GivenStiffnessHandValues) {
   TdbParams p = Tdb(BearingLaw::kQuadratic);
-  p.four_dof.bearing.quadratic_stiffness_N_per_m2 = 2e13;
+  p.four_dof().bearing.quadratic_stiffness_N_per_m2 = 2e13;
   const FourDofTdb tdb(p);
   EXPECT_EQ(tdb.bearing().quadratic_constant_N_per_m2, 2e13);
   States s{}, rate{};
@@ -192,7 +192,7 @@ TEST(QuadraticBearing, DefaultIsTheSecantThroughTheHertzOperatingPoint) {
 TEST(FourDofSeed001, RacesStartInStaticEquilibriumUnderGravity) {
   for (const BearingLaw law : {BearingLaw::kQuadratic, BearingLaw::kHertzLinearised}) {
     TdbParams p = Tdb(law);
-    p.four_dof.gravity_y_m_s2 = -9.81;
+    p.four_dof().gravity_y_m_s2 = -9.81;
     const FourDofTdb tdb(p);
     States s{}, rate{};
     tdb.InitialState(s.data());
@@ -204,7 +204,7 @@ TEST(FourDofSeed001, RacesStartInStaticEquilibriumUnderGravity) {
     EXPECT_NEAR(f.support_force_N(), 0.9 * 9.81, 1e-9);
   }
   TdbParams bad = Tdb();
-  bad.four_dof.cross_coupled.stiffness_N_per_m = 0.0;
+  bad.four_dof().cross_coupled.stiffness_N_per_m = 0.0;
   EXPECT_THROW(FourDofTdb{bad}, std::invalid_argument);
 }
 
@@ -224,19 +224,19 @@ TEST(ConfigSeed001, RigReadsAsWritten) {
   EXPECT_EQ(p.rotor.kind, RotorKind::kRigid);
   ASSERT_EQ(p.tdbs.size(), 2u);
   for (const TdbParams& t : p.tdbs) {
-    EXPECT_EQ(t.model, TdbModelKind::kFourDof);
-    EXPECT_EQ(t.four_dof.ribbon, RibbonLaw::kCrossCoupled);
-    EXPECT_EQ(t.four_dof.bearing.law, BearingLaw::kQuadratic);
-    EXPECT_EQ(t.four_dof.bearing.quadratic_stiffness_N_per_m2, 0.0);  // derived
-    EXPECT_DOUBLE_EQ(t.four_dof.cross_coupled.stiffness_N_per_m, 5.0e6);
-    EXPECT_DOUBLE_EQ(t.four_dof.cross_coupled.cross_coupling, 0.3);
-    EXPECT_DOUBLE_EQ(t.four_dof.cross_coupled.damping_N_s_per_m, 7.0e3);
-    EXPECT_DOUBLE_EQ(t.four_dof.cross_coupled.sign_regularisation_s_per_m, 100.0);
+    EXPECT_EQ(t.model(), TdbModelKind::kFourDof);
+    EXPECT_EQ(t.four_dof().ribbon, RibbonLaw::kCrossCoupled);
+    EXPECT_EQ(t.four_dof().bearing.law, BearingLaw::kQuadratic);
+    EXPECT_EQ(t.four_dof().bearing.quadratic_stiffness_N_per_m2, 0.0);  // derived
+    EXPECT_DOUBLE_EQ(t.four_dof().cross_coupled.stiffness_N_per_m, 5.0e6);
+    EXPECT_DOUBLE_EQ(t.four_dof().cross_coupled.cross_coupling, 0.3);
+    EXPECT_DOUBLE_EQ(t.four_dof().cross_coupled.damping_N_s_per_m, 7.0e3);
+    EXPECT_DOUBLE_EQ(t.four_dof().cross_coupled.sign_regularisation_s_per_m, 100.0);
   }
   const ModelParams q = testing::LoadTestConfig(
       "jarroux2016_rigid.toml", {"tdb.de.four_dof.bearing.quadratic_stiffness_N_per_m2=3e13"});
   const TdbParams& de = q.tdbs.at(0).name == "de" ? q.tdbs.at(0) : q.tdbs.at(1);
-  EXPECT_DOUBLE_EQ(de.four_dof.bearing.quadratic_stiffness_N_per_m2, 3e13);
+  EXPECT_DOUBLE_EQ(de.four_dof().bearing.quadratic_stiffness_N_per_m2, 3e13);
 }
 
 TEST(ConfigSeed001, ErrorsNameKeyAndExpectation) {

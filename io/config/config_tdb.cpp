@@ -262,27 +262,30 @@ TdbParams ReadTdb(const std::string& name, const TableReader& table, const Axial
   // `--set tdb.X.model=...` can switch between two complete descriptions.
   const std::string model = table.Choice(
       "model", {"contact_law", "four_dof", "ball_bearing_tdb", "catcher_bearing"}, "contact_law");
-  tdb.model = model == "four_dof" ? TdbModelKind::kFourDof : TdbModelKind::kContactLaw;
-  if (model == "ball_bearing_tdb") tdb.model = TdbModelKind::kBallBearing;
-  if (model == "catcher_bearing") tdb.model = TdbModelKind::kCatcherBearing;
-  if (tdb.model == TdbModelKind::kContactLaw || table.Has("contact_law")) {
-    tdb.contact_law = ReadContactLaw(table);
+  // The selected model's parameters are kept; another model's table is read for its checks
+  // only.
+  if (model == "contact_law" || table.Has("contact_law")) {
+    ContactLawParams read = ReadContactLaw(table);
+    if (model == "contact_law") tdb.model_params = std::move(read);
   }
-  if (tdb.model == TdbModelKind::kFourDof || table.Has("four_dof")) {
-    tdb.four_dof = ReadFourDof(table, gravity);
+  if (model == "four_dof" || table.Has("four_dof")) {
+    FourDofParams read = ReadFourDof(table, gravity);
+    if (model == "four_dof") tdb.model_params = std::move(read);
   }
-  if (tdb.model == TdbModelKind::kBallBearing || table.Has("ball_bearing_tdb")) {
-    tdb.ball_bearing = ReadBallBearingTdb(table, gravity);
+  if (model == "ball_bearing_tdb" || table.Has("ball_bearing_tdb")) {
+    BallBearingTdbParams read = ReadBallBearingTdb(table, gravity);
+    if (model == "ball_bearing_tdb") tdb.model_params = std::move(read);
   }
-  if (tdb.model == TdbModelKind::kCatcherBearing || table.Has("catcher_bearing")) {
-    tdb.catcher = ReadCatcherBearing(table, gravity);
+  if (model == "catcher_bearing" || table.Has("catcher_bearing")) {
+    CatcherBearingParams read = ReadCatcherBearing(table, gravity);
+    if (model == "catcher_bearing") tdb.model_params = std::move(read);
   }
-  if (tdb.model == TdbModelKind::kCatcherBearing) {
+  if (tdb.model() == TdbModelKind::kCatcherBearing) {
     table.Reject("spin",
                  "no [spin] table with model = \"catcher_bearing\" (its races' inertias "
                  "and friction moments are in [catcher_bearing])");
   }
-  if (tdb.model == TdbModelKind::kBallBearing) {
+  if (tdb.model() == TdbModelKind::kBallBearing) {
     // Its journal/race friction is [ball_bearing_tdb.friction]; of [friction] it reads only the
     // regularisation its races' load torque shares (RaceAcceleration), so the rest would be
     // accepted and ignored.

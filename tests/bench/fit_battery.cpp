@@ -217,8 +217,8 @@ std::vector<Variant> Variants() {
          TdbParams& t = p->tdbs.front();
          const double f = Between(r, 0.4, 0.6);
          t.friction.coefficient *= f;
-         t.ball_bearing.friction.kinetic_coefficient *= f;
-         t.ball_bearing.friction.static_coefficient *= f;
+         t.ball_bearing().friction.kinetic_coefficient *= f;
+         t.ball_bearing().friction.static_coefficient *= f;
        }});
   v.push_back({"unbalance at a TDB", {"unbalance"}, [](ModelParams* p, PortableRandom* r) {
                  UnbalanceParams u;

@@ -36,8 +36,8 @@ std::string SetTrue(const std::string& path) {
 // 4-DOF and catcher-bearing TDBs the regularised Coulomb law's, the ball-bearing TDB (Chen 2019)
 // its own static/kinetic law's; none under a frictionless law.
 bool HasFriction(const TdbParams& t) {
-  if (t.model == TdbModelKind::kBallBearing) {
-    return t.ball_bearing.friction.law != SlipFrictionLaw::kNone;
+  if (t.model() == TdbModelKind::kBallBearing) {
+    return t.ball_bearing().friction.law != SlipFrictionLaw::kNone;
   }
   return t.friction.law != FrictionLaw::kNone;
 }
@@ -46,8 +46,8 @@ bool HasFriction(const TdbParams& t) {
 // kinetic one: a drop's spin-up is all slip, and the static one only bounds the force inside
 // the narrow stick band (rt_core/slip_friction.hpp).
 double SlidingCoefficient(const TdbParams& t) {
-  return t.model == TdbModelKind::kBallBearing ? t.ball_bearing.friction.kinetic_coefficient
-                                               : t.friction.coefficient;
+  return t.model() == TdbModelKind::kBallBearing ? t.ball_bearing().friction.kinetic_coefficient
+                                                 : t.friction.coefficient;
 }
 
 // The ball-bearing TDB's static coefficient for a kinetic `mu`: in the declared proportion, as
@@ -61,10 +61,10 @@ double StaticCoefficient(const SlipFrictionParams& declared, double mu) {
 // The keys of the coefficient a TDB slides with (the ball-bearing TDB's static one in
 // proportion to the declared pair).
 void SetSlidingCoefficient(const TdbParams& t, double mu, std::vector<std::string>* out) {
-  if (t.model == TdbModelKind::kBallBearing) {
+  if (t.model() == TdbModelKind::kBallBearing) {
     const std::string table = "tdb." + t.name + ".ball_bearing_tdb.friction.";
     out->push_back(
-        Set(table + "static_coefficient", StaticCoefficient(t.ball_bearing.friction, mu)));
+        Set(table + "static_coefficient", StaticCoefficient(t.ball_bearing().friction, mu)));
     out->push_back(Set(table + "kinetic_coefficient", mu));
   } else {
     out->push_back(Set("tdb." + t.name + ".friction.coefficient", mu));
@@ -75,7 +75,7 @@ void SetSlidingCoefficient(const TdbParams& t, double mu, std::vector<std::strin
 // RaceAcceleration) for every model but the catcher bearing, whose races' moments are its
 // bearings' own (rt_core/catcher_bearing_tdb.cpp; its config rejects a [spin] table).
 bool HasDragTorque(const TdbParams& t) {
-  return t.spin.enabled && t.model != TdbModelKind::kCatcherBearing;
+  return t.spin.enabled && t.model() != TdbModelKind::kCatcherBearing;
 }
 
 // Start values without repeats, in order (a declared value first).
@@ -519,13 +519,13 @@ struct LinearRibbon {
 // Kelvin-Voigt ribbon, or a contact-law TDB with its bilinear law. In series with the contact
 // the ribbon's race is massless, so its damping must be positive (rt_core/contact_law_tdb.hpp).
 std::optional<LinearRibbon> LinearRibbonOf(const TdbParams& t) {
-  if (t.model == TdbModelKind::kFourDof && t.four_dof.ribbon == RibbonLaw::kKelvinVoigt) {
-    return LinearRibbon{"tdb." + t.name + ".four_dof.", t.four_dof.kelvin_voigt.stiffness_N_per_m,
-                        t.four_dof.kelvin_voigt.damping_N_s_per_m};
+  if (t.model() == TdbModelKind::kFourDof && t.four_dof().ribbon == RibbonLaw::kKelvinVoigt) {
+    return LinearRibbon{"tdb." + t.name + ".four_dof.", t.four_dof().kelvin_voigt.stiffness_N_per_m,
+                        t.four_dof().kelvin_voigt.damping_N_s_per_m};
   }
-  const ContactLawParams& c = t.contact_law;
-  if (t.model == TdbModelKind::kContactLaw && c.ribbon == ContactLawRibbon::kBilinear &&
-      c.ribbon_damping_N_s_per_m > 0.0) {
+  if (t.model() != TdbModelKind::kContactLaw) return std::nullopt;
+  const ContactLawParams& c = t.contact_law();
+  if (c.ribbon == ContactLawRibbon::kBilinear && c.ribbon_damping_N_s_per_m > 0.0) {
     return LinearRibbon{"tdb." + t.name + ".contact_law.", c.ribbon_stiffness_N_per_m,
                         c.ribbon_damping_N_s_per_m};
   }

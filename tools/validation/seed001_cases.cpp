@@ -62,7 +62,7 @@ std::vector<ValidationCheck> Seed001Trends(const std::string& configs_dir) {
     whirl_overrides.push_back(fmt::format("{}friction.coefficient={:.17g}", key, kWhirlMu));
     whirl_overrides.push_back(
         fmt::format("{}four_dof.cross_coupled.damping_N_s_per_m={:.17g}", key,
-                    t.four_dof.cross_coupled.damping_N_s_per_m / kWhirlDampingCut));
+                    t.four_dof().cross_coupled.damping_N_s_per_m / kWhirlDampingCut));
   }
   const OfflineDrop base = RunOfflineDrop(config, {});
   const OfflineDrop wide = RunOfflineDrop(config, wide_overrides);
@@ -84,7 +84,7 @@ std::vector<ValidationCheck> Seed001Trends(const std::string& configs_dir) {
        ++i) {
     const TdbParams& t = rig.tdbs[i];
     const double mu = t.friction.coefficient;
-    const double ccrd_N_s_per_m = t.four_dof.cross_coupled.damping_N_s_per_m;
+    const double ccrd_N_s_per_m = t.four_dof().cross_coupled.damping_N_s_per_m;
     checks.push_back(TrendCheck(
         kCase, fmt::format("{}: motion, mu {:.2g}, ccrd {:.2g} N s/m", t.name, mu, ccrd_N_s_per_m),
         "rocking", Describe(base.whirl[i]), base.whirl[i].kind == WhirlKind::kRocking));
