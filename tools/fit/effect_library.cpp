@@ -532,63 +532,64 @@ std::optional<LinearRibbon> LinearRibbonOf(const TdbParams& t) {
   return std::nullopt;
 }
 
+// A ribbon law in place of a TDB's linear ribbon, one parameter fitted: what the ribbon effects
+// share (the quantities that reveal them; the overrides the law writes for a value).
+Effect RibbonLawEffect(const TdbParams& t, const std::string& family, std::string description,
+                       EffectParameter parameter, double probe,
+                       std::function<std::vector<std::string>(double)> law) {
+  Effect e;
+  e.name = family + ":" + t.name;
+  e.family = family;
+  e.description = std::move(description);
+  e.parameters = {std::move(parameter)};
+  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce, Q::kTdbSupportForce,
+                   Q::kControllerCommand};
+  e.probe = {probe};
+  e.overrides = [law = std::move(law)](const std::vector<double>& v) { return law(v[0]); };
+  return e;
+}
+
 // A Kelvin-Voigt ribbon that is really a dry-friction one: the generalized Dahl law in its
 // place, its slipping threshold fitted. The rest is tied to what is declared: the slipping
 // stiffness is the Kelvin-Voigt stiffness, and beta and the hardening envelopes are the seed-000
 // rig's (configs/jarroux2019_industrial_model3.toml), which carry a rig's weight share.
 Effect RibbonDryFriction(const TdbParams& t, const LinearRibbon& kv) {
-  const std::string name = t.name;
-  Effect e;
-  e.name = "ribbon_dry_friction:" + name;
-  e.family = "ribbon_dry_friction";
-  e.description = fmt::format(
-      "dry friction in TDB {}'s ribbon: the generalized Dahl law (Jarroux 2019 Eq. (1)-(3)) in "
-      "place of its linear ribbon, slipping threshold fitted",
-      name);
-  e.parameters = {{"slipping_threshold_N", 0.0, 5000.0, {200.0, 1000.0, 2500.0}}};
-  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce, Q::kTdbSupportForce,
-                   Q::kControllerCommand};
-  e.probe = {1000.0};
-  const std::string table = kv.table;
-  e.overrides = [table, kv](const std::vector<double>& v) {
-    const std::string dahl = table + "dahl.";
-    return std::vector<std::string>{SetText(table + "ribbon", "dahl"),
-                                    Set(dahl + "slipping_threshold_N", std::max(0.0, v[0])),
-                                    Set(dahl + "threshold_scale", 1.0),
-                                    Set(dahl + "slipping_stiffness_N_per_m", kv.stiffness_N_per_m),
-                                    Set(dahl + "beta_per_m", 1e6),
-                                    Set(dahl + "upper_hardening_N", 50.0),
-                                    Set(dahl + "upper_hardening_rate_per_m", 2.5e4),
-                                    Set(dahl + "lower_hardening_N", 50.0),
-                                    Set(dahl + "lower_hardening_rate_per_m", 2.5e4)};
-  };
-  return e;
+  return RibbonLawEffect(
+      t, "ribbon_dry_friction",
+      fmt::format("dry friction in TDB {}'s ribbon: the generalized Dahl law (Jarroux 2019 Eq. "
+                  "(1)-(3)) in place of its linear ribbon, slipping threshold fitted",
+                  t.name),
+      {"slipping_threshold_N", 0.0, 5000.0, {200.0, 1000.0, 2500.0}}, 1000.0,
+      [kv](double threshold_N) {
+        const std::string dahl = kv.table + "dahl.";
+        return std::vector<std::string>{
+            SetText(kv.table + "ribbon", "dahl"),
+            Set(dahl + "slipping_threshold_N", std::max(0.0, threshold_N)),
+            Set(dahl + "threshold_scale", 1.0),
+            Set(dahl + "slipping_stiffness_N_per_m", kv.stiffness_N_per_m),
+            Set(dahl + "beta_per_m", 1e6),
+            Set(dahl + "upper_hardening_N", 50.0),
+            Set(dahl + "upper_hardening_rate_per_m", 2.5e4),
+            Set(dahl + "lower_hardening_N", 50.0),
+            Set(dahl + "lower_hardening_rate_per_m", 2.5e4)};
+      });
 }
 
 // A ribbon whose stiffness is cross-coupled so as to oppose the outer race's whirl (Jarroux
 // 2016, seed 001, Eq. (1)); its stiffness and damping are the declared Kelvin-Voigt ones.
 Effect RibbonCrossCoupling(const TdbParams& t, const LinearRibbon& kv) {
-  const std::string name = t.name;
-  Effect e;
-  e.name = "ribbon_cross_coupling:" + name;
-  e.family = "ribbon_cross_coupling";
-  e.description = fmt::format(
-      "cross-coupled stiffness of TDB {}'s ribbon opposing the outer race's whirl (Jarroux 2016 "
-      "Eq. (1)), eta fitted",
-      name);
-  e.parameters = {{"cross_coupling", 0.0, 2.0, {0.1, 0.5, 1.0}}};
-  e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce, Q::kTdbSupportForce,
-                   Q::kControllerCommand};
-  e.probe = {1.0};
-  const std::string table = kv.table;
-  e.overrides = [table, kv](const std::vector<double>& v) {
-    const std::string cc = table + "cross_coupled.";
-    return std::vector<std::string>{SetText(table + "ribbon", "cross_coupled"),
-                                    Set(cc + "stiffness_N_per_m", kv.stiffness_N_per_m),
-                                    Set(cc + "damping_N_s_per_m", kv.damping_N_s_per_m),
-                                    Set(cc + "cross_coupling", std::max(0.0, v[0]))};
-  };
-  return e;
+  return RibbonLawEffect(
+      t, "ribbon_cross_coupling",
+      fmt::format("cross-coupled stiffness of TDB {}'s ribbon opposing the outer race's whirl "
+                  "(Jarroux 2016 Eq. (1)), eta fitted",
+                  t.name),
+      {"cross_coupling", 0.0, 2.0, {0.1, 0.5, 1.0}}, 1.0, [kv](double eta) {
+        const std::string cc = kv.table + "cross_coupled.";
+        return std::vector<std::string>{SetText(kv.table + "ribbon", "cross_coupled"),
+                                        Set(cc + "stiffness_N_per_m", kv.stiffness_N_per_m),
+                                        Set(cc + "damping_N_s_per_m", kv.damping_N_s_per_m),
+                                        Set(cc + "cross_coupling", std::max(0.0, eta))};
+      });
 }
 
 // The registry's entry for a key, or (a table the config leaves out, so no reader logged it) one
