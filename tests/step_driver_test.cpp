@@ -4,10 +4,13 @@
 // a flux decay; and a step allocates nothing.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
 
+#include "controller_if/loop/closed_loop_state.hpp"
+#include "controller_if/loop/hil_session.hpp"
 #include "controller_if/loop/step_driver.hpp"
 #include "malloc_guard.hpp"
 #include "test_configs.hpp"
@@ -72,6 +75,64 @@ TEST(StepDriver, ACopyTakenMidRunGoesOnBitForBit) {
   EXPECT_GT(hooks.samples, model.total_steps / 10 - 2);
   // The decay ran: the unpowered force scale has fallen well below one.
   EXPECT_LT(driver.input().amb[0].force_scale[1], 0.01);
+}
+
+// The in-process controller's state is part of the run: a ClosedLoopState copied mid-run (the
+// driver and the PID's integrators and filters together) goes on bit for bit with its original
+// through the trigger, the sensors' noise feeding back through the controller.
+struct ControllerHooks : StepHooks {
+  const Model* model = nullptr;
+  ReferenceController* controller = nullptr;
+  std::int64_t substeps = 1;
+  PowerEvent failure;
+  ControlInput out;
+  void PowerEvents(StepDriver& d, std::int64_t k) noexcept {
+    if (k == model->trigger_step) d.ApplyPower(failure);
+  }
+  bool Command(StepDriver& d, std::int64_t k) noexcept {
+    if (k % substeps != 0) return true;
+    controller->Update(d.readings(), &out);
+    for (std::size_t a = 0; a < model->params.ambs.size(); ++a) {
+      d.command()[a] = out.amb[a].current_A;
+    }
+    return true;
+  }
+};
+
+TEST(ClosedLoopState, ACopyTakenMidRunGoesOnBitForBitControllerIncluded) {
+  const Model model = Rig();
+  const std::int64_t substeps = ControllerSubsteps(model);
+  ClosedLoopState run(model, substeps, true);
+  ControlInput input;
+  run.controller->Initial(&input);
+  run.driver.SetInput(input);
+  run.driver.Start(run.driver.sim().InitialState(StaticLoadInput(model)));
+  ControllerHooks hooks;
+  hooks.model = &model;
+  hooks.substeps = substeps;
+  hooks.failure = ScheduledFailure(model);
+  hooks.controller = &*run.controller;
+  while (run.driver.state().step_index < model.trigger_step / 2) {
+    ASSERT_TRUE(run.driver.Step(hooks));
+  }
+  // Levitated by the controller before the trigger: the journal within 2 % of the clearance.
+  const double clearance = model.params.tdbs[0].clearance_m;
+  Observation o;
+  run.driver.sim().Observe(run.driver.state(), &o);
+  EXPECT_LT(std::abs(o.tdb_journal_xy_m[0][1]), 0.02 * clearance);
+  ClosedLoopState copy = run;
+  ControllerHooks copy_hooks = hooks;
+  copy_hooks.controller = &*copy.controller;
+  while (run.driver.state().step_index < model.total_steps) {
+    ASSERT_TRUE(run.driver.Step(hooks));
+    ASSERT_TRUE(copy.driver.Step(copy_hooks));
+    ASSERT_TRUE(SameBits(run.driver.state(), copy.driver.state()))
+        << "step " << run.driver.state().step_index;
+  }
+  // 15 ms after the trigger the rotor lies on its TDB (free fall alone takes 7 ms to the
+  // clearance).
+  run.driver.sim().Observe(run.driver.state(), &o);
+  EXPECT_LT(o.tdb_journal_xy_m[0][1], -0.5 * clearance);
 }
 
 TEST(StepDriver, StepsDoNotAllocate) {

@@ -10,6 +10,7 @@
 #include "controller_if/boundary/sensor_emulator.hpp"
 #include "controller_if/controller/current_profile.hpp"
 #include "controller_if/controller/pid_controller.hpp"
+#include "controller_if/loop/closed_loop_state.hpp"
 #include "controller_if/loop/hil_session.hpp"
 #include "controller_if/loop/settled_start.hpp"
 #include "controller_if/loop/state_dump.hpp"
@@ -147,15 +148,14 @@ struct OfflineHooks : StepHooks {
 OfflineRunResult RunOfflineWithCurrents(const Model& model, const OfflineOutput& on_output,
                                         const std::function<void(double)>& on_progress,
                                         RunRecorder* recorder) {
-  const double dt = model.params.simulation.step_s;
   const std::int64_t substeps =
       model.params.controller.kind == ControllerKind::kNone ? 1 : ControllerSubsteps(model);
   const bool internal = model.params.controller.kind == ControllerKind::kInternalPid;
-  StepDriver driver(model, internal ? substeps : 0);
-  std::optional<ReferenceController> controller;
+  ClosedLoopState run(model, substeps, internal);
+  StepDriver& driver = run.driver;
+  std::optional<ReferenceController>& controller = run.controller;
   ControlInput input;
   if (internal) {
-    controller.emplace(model, static_cast<double>(substeps) * dt);
     controller->Initial(&input);
   } else {
     input = ProfileStartInput(model);
