@@ -152,5 +152,48 @@ TEST(HilSession, WatchdogActsOnControllerSilence) {
   }
 }
 
+// The session's run state is the whole run: a second session resumed from it mid-run, over
+// copies of the link (the reference controller inside it) and the trigger, goes on exactly as the
+// first does, through the trigger and the drop, observation for observation.
+TEST(HilSession, ASessionResumedFromAnothersRunStateGoesOnBitForBit) {
+  const Model model = PidRig(0.15);
+  const double period_s = ControllerSubsteps(model) * model.params.simulation.step_s;
+  const std::int64_t period_ns = std::llround(period_s * 1e9);
+  InternalControllerLink link(model, period_s);
+  ScheduledTrigger trigger(model.params.trigger.time_s, ScheduledFailure(model));
+  auto outputs = std::make_unique<HilSession::OutputRing>();
+  HilSession session(model, &link, {&trigger}, HilOptions{}, outputs.get());
+  session.Start(0);
+  std::int64_t period = 0;
+  Observation o;
+  // Half way to the trigger.
+  while (session.state().step_index < model.trigger_step / 2) {
+    ASSERT_TRUE(session.Period(period++ * period_ns));
+    while (outputs->TryPop(&o)) {
+    }
+  }
+  InternalControllerLink link_copy = link;
+  ScheduledTrigger trigger_copy = trigger;
+  auto outputs_copy = std::make_unique<HilSession::OutputRing>();
+  HilSession resumed(model, &link_copy, {&trigger_copy}, HilOptions{}, outputs_copy.get(),
+                     &session.run_state());
+  std::vector<Observation> first, second;
+  bool go_on = true;
+  while (go_on) {
+    const std::int64_t now_ns = period++ * period_ns;
+    go_on = session.Period(now_ns);
+    ASSERT_EQ(resumed.Period(now_ns), go_on);
+    while (outputs->TryPop(&o)) first.push_back(o);
+    while (outputs_copy->TryPop(&o)) second.push_back(o);
+  }
+  EXPECT_EQ(resumed.stop(), HilStop::kDuration);
+  EXPECT_EQ(resumed.counters().power_events, 1);
+  ASSERT_EQ(first.size(), second.size());
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    ASSERT_TRUE(SameObservation(first[i], second[i])) << "t = " << first[i].time_s;
+  }
+  EXPECT_GT(first.back().tdb[0].normal_force_N + first.back().tdb[1].normal_force_N, 0.0);
+}
+
 }  // namespace
 }  // namespace ambdrop

@@ -48,6 +48,28 @@ struct HilCounters {
 
 enum class HilStop { kRunning, kDuration, kWatchdog, kDiverged };
 
+/// Everything a HIL session changes as it runs: the step driver (physics, power state, sensors,
+/// input), the watchdog, the controller's newest currents, the counters and the period's flags.
+/// The link, the trigger sources, the output ring and the recorder it talks to are not in it. A
+/// session resumed from another's run state over copies of its link and triggers goes on bit
+/// for bit (tests/hil_session_test.cpp).
+struct HilRunState {
+  HilRunState(const Model& model, std::int64_t substeps, std::int64_t watchdog_timeout_ns,
+              SilenceAction silence_action)
+      : driver(model, substeps), watchdog(watchdog_timeout_ns, silence_action) {}
+  StepDriver driver;
+  ControllerWatchdog watchdog;
+  CurrentsMessage latest;
+  HilCounters counters;
+  bool period_start = false;     ///< the next step is a period's first: events and currents are due
+  bool send = true;              ///< the period's closing sample goes to the controller
+  bool watchdog_zeroed = false;  ///< the zero currents of this silence are recorded
+  RecordedInput pending_record;  ///< this period's input, recorded once the power events are
+  bool pending_record_valid = false;
+  HilStop stop = HilStop::kRunning;
+  StepStatus step_status = StepStatus::kOk;
+};
+
 /// One HIL run: each controller period it takes the controller's newest currents, applies
 /// power events from the trigger sources, advances the physics by its whole number of steps
 /// with the currents held, and sends the emulated sensor readings back. Period() is the
@@ -57,8 +79,11 @@ class HilSession {
  public:
   using OutputRing = SpscRing<Observation, 8192>;
 
+  /// `resume`: another session's run state (same model and options) to go on from, instead of
+  /// a new run; its link and triggers must be in the same state (copies of them).
   HilSession(const Model& model, ControllerLink* link, std::vector<TriggerSource*> triggers,
-             const HilOptions& options, OutputRing* outputs = nullptr);
+             const HilOptions& options, OutputRing* outputs = nullptr,
+             const HilRunState* resume = nullptr);
 
   /// Sends the first sensor sample (before period 0) and starts the watchdog at `now_ns`.
   void Start(std::int64_t now_ns) noexcept;
@@ -72,12 +97,15 @@ class HilSession {
   /// controller together and upset its sample-by-sample timing (derivative terms, CAN bus load).
   bool Period(std::int64_t now_ns, std::int64_t missed_before = 0) noexcept;
 
-  HilStop stop() const noexcept { return stop_; }
+  /// The run so far: a session made with it as `resume` goes on from there.
+  const HilRunState& run_state() const noexcept { return run_; }
+
+  HilStop stop() const noexcept { return run_.stop; }
   /// What the step reported when the run diverged (kOk otherwise); see DescribeFailure.
-  StepStatus step_status() const noexcept { return step_status_; }
-  const State& state() const noexcept { return driver_.state(); }
-  const HilCounters& counters() const noexcept { return counters_; }
-  const ControllerWatchdog& watchdog() const noexcept { return watchdog_; }
+  StepStatus step_status() const noexcept { return run_.step_status; }
+  const State& state() const noexcept { return run_.driver.state(); }
+  const HilCounters& counters() const noexcept { return run_.counters; }
+  const ControllerWatchdog& watchdog() const noexcept { return run_.watchdog; }
   std::int64_t substeps() const noexcept { return substeps_; }
   double period_s() const noexcept { return substeps_ * model_.params.simulation.step_s; }
 
@@ -102,20 +130,10 @@ class HilSession {
   ControllerLink* link_;
   std::vector<TriggerSource*> triggers_;
   OutputRing* outputs_;
-  StepDriver driver_;
-  ControllerWatchdog watchdog_;
   std::int64_t substeps_;
   ControlInput initial_input_;
-  CurrentsMessage latest_;
-  HilCounters counters_;
-  bool period_start_ = false;  // the next step is a period's first: events and currents are due
-  bool send_ = true;           // the period's closing sample goes to the controller
   RunRecorder* recorder_;
-  bool watchdog_zeroed_ = false;  // the zero currents of this silence are recorded
-  RecordedInput pending_record_;  // this period's input, recorded once the power events are
-  bool pending_record_valid_ = false;
-  HilStop stop_ = HilStop::kRunning;
-  StepStatus step_status_ = StepStatus::kOk;
+  HilRunState run_;
 };
 
 /// Physics steps per controller period; throws if the period is not a whole number of steps.
