@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "malloc_guard.hpp"
+#include "drop_step_checks.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/simulator.hpp"
 #include "test_configs.hpp"
@@ -37,52 +37,17 @@ Model Rig(const Variant& v) {
   return BuildModel(testing::LoadTestConfig(v.config, overrides));
 }
 
-ControlInput InputAt(const Model& m, std::int64_t step) {
-  return step < m.trigger_step ? ControlInput::Powered() : ControlInput::PowerOff();
-}
-
 TEST(FourDofStep, NoHeapAllocationThroughTheDrop) {
   for (const Variant& v : Variants()) {
     SCOPED_TRACE(std::string(v.config) + (v.overrides.empty() ? "" : " " + v.overrides[0]));
-    const Model model = Rig(v);
-    Simulator sim(model);
-    State s = sim.InitialState();
-    Observation obs;
-    double peak = 0.0;
-    std::int64_t allocations = 0;
-    {
-      testing::MallocGuard guard;
-      for (int i = 0; i < 20000; ++i) {
-        if (sim.Step(&s, InputAt(model, s.step_index)) != StepStatus::kOk) break;
-        sim.Observe(s, &obs);
-        peak = std::max(peak, obs.tdb[0].normal_force_N);
-      }
-      allocations = guard.allocations();
-    }
-    EXPECT_EQ(s.step_index, 20000);
-    EXPECT_GT(peak, 0.0);  // the window really contained contacts
-    EXPECT_EQ(allocations, 0);
+    testing::ExpectDropAllocatesNothing(Rig(v));
   }
 }
 
 TEST(FourDofStep, RepeatedRunsAreBitIdentical) {
   for (const Variant& v : Variants()) {
     SCOPED_TRACE(v.config);
-    const Model model = Rig(v);
-    Simulator a(model), b(model);
-    State sa = a.InitialState(), sb = b.InitialState();
-    for (int i = 0; i < 20000; ++i) {
-      ASSERT_EQ(a.Step(&sa, InputAt(model, sa.step_index)), StepStatus::kOk);
-      ASSERT_EQ(b.Step(&sb, InputAt(model, sb.step_index)), StepStatus::kOk);
-      ASSERT_EQ(std::memcmp(sa.y.data(), sb.y.data(), sizeof(double) * model.state_size), 0)
-          << "step " << i;
-    }
-    State copy = sa;
-    for (int i = 0; i < 1000; ++i) {
-      ASSERT_EQ(a.Step(&sa, InputAt(model, sa.step_index)), StepStatus::kOk);
-      ASSERT_EQ(b.Step(&copy, InputAt(model, copy.step_index)), StepStatus::kOk);
-    }
-    EXPECT_EQ(std::memcmp(sa.y.data(), copy.y.data(), sizeof(double) * model.state_size), 0);
+    testing::ExpectDropBitIdentical(Rig(v));
   }
 }
 

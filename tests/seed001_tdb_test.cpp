@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "drop_step_checks.hpp"
 #include "io/config/config_loader.hpp"
-#include "malloc_guard.hpp"
 #include "rt_core/four_dof_tdb.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/ribbon_cross_coupled.hpp"
@@ -266,10 +266,6 @@ Model Rig(std::vector<std::string> extra) {
   return BuildModel(testing::LoadTestConfig("jarroux2016_rigid.toml", overrides));
 }
 
-ControlInput InputAt(const Model& m, std::int64_t step) {
-  return step < m.trigger_step ? ControlInput::Powered() : ControlInput::PowerOff();
-}
-
 std::vector<std::vector<std::string>> Variants() {
   return {{},
           {"tdb.de.four_dof.bearing_law=\"hertz\"", "tdb.de.misalignment.enabled=true",
@@ -277,47 +273,11 @@ std::vector<std::vector<std::string>> Variants() {
 }
 
 TEST(Seed001Step, NoHeapAllocationThroughTheDrop) {
-  for (const auto& v : Variants()) {
-    const Model model = Rig(v);
-    Simulator sim(model);
-    State s = sim.InitialState();
-    Observation obs;
-    double peak_normal = 0.0, peak_support = 0.0;
-    std::int64_t allocations = 0;
-    {
-      testing::MallocGuard guard;
-      for (int i = 0; i < 20000; ++i) {
-        if (sim.Step(&s, InputAt(model, s.step_index)) != StepStatus::kOk) break;
-        sim.Observe(s, &obs);
-        peak_normal = std::max(peak_normal, obs.tdb[0].normal_force_N);
-        peak_support = std::max(peak_support, obs.tdb[0].support_force_N());
-      }
-      allocations = guard.allocations();
-    }
-    EXPECT_EQ(s.step_index, 20000);
-    EXPECT_GT(peak_normal, 0.0);  // the window really contained contacts
-    EXPECT_EQ(allocations, 0);
-  }
+  for (const auto& v : Variants()) testing::ExpectDropAllocatesNothing(Rig(v));
 }
 
 TEST(Seed001Step, RepeatedRunsAreBitIdentical) {
-  for (const auto& v : Variants()) {
-    const Model model = Rig(v);
-    Simulator a(model), b(model);
-    State sa = a.InitialState(), sb = b.InitialState();
-    for (int i = 0; i < 20000; ++i) {
-      ASSERT_EQ(a.Step(&sa, InputAt(model, sa.step_index)), StepStatus::kOk);
-      ASSERT_EQ(b.Step(&sb, InputAt(model, sb.step_index)), StepStatus::kOk);
-      ASSERT_EQ(std::memcmp(sa.y.data(), sb.y.data(), sizeof(double) * model.state_size), 0)
-          << "step " << i;
-    }
-    State copy = sa;
-    for (int i = 0; i < 1000; ++i) {
-      ASSERT_EQ(a.Step(&sa, InputAt(model, sa.step_index)), StepStatus::kOk);
-      ASSERT_EQ(b.Step(&copy, InputAt(model, copy.step_index)), StepStatus::kOk);
-    }
-    EXPECT_EQ(std::memcmp(sa.y.data(), copy.y.data(), sizeof(double) * model.state_size), 0);
-  }
+  for (const auto& v : Variants()) testing::ExpectDropBitIdentical(Rig(v));
 }
 
 }  // namespace

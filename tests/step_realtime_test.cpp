@@ -5,6 +5,7 @@
 #include <cstring>
 #include <vector>
 
+#include "drop_step_checks.hpp"
 #include "malloc_guard.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/simulator.hpp"
@@ -19,29 +20,8 @@ Model Rig() {
       "jarroux2019_industrial.toml", {"trigger.time_s=0.005", "unbalance.coupling.enabled=true"}));
 }
 
-ControlInput InputAt(const Model& m, std::int64_t step) {
-  return step < m.trigger_step ? ControlInput::Powered() : ControlInput::PowerOff();
-}
-
 TEST(Step, NoHeapAllocationOverTwentyThousandSteps) {
-  const Model model = Rig();
-  Simulator sim(model);
-  State s = sim.InitialState();
-  Observation obs;
-  double peak = 0.0;
-  std::int64_t allocations = 0;
-  {
-    testing::MallocGuard guard;
-    for (int i = 0; i < 20000; ++i) {
-      if (sim.Step(&s, InputAt(model, s.step_index)) != StepStatus::kOk) break;
-      sim.Observe(s, &obs);
-      peak = std::max(peak, obs.tdb[0].normal_force_N);
-    }
-    allocations = guard.allocations();
-  }
-  EXPECT_EQ(s.step_index, 20000);
-  EXPECT_GT(peak, 0.0);  // the window really contained contacts
-  EXPECT_EQ(allocations, 0);
+  testing::ExpectDropAllocatesNothing(Rig());
 }
 
 TEST(Step, MallocGuardSeesAllocations) {
@@ -56,22 +36,7 @@ TEST(Step, MallocGuardSeesAllocations) {
 }
 
 TEST(Step, RepeatedRunsAreBitIdentical) {
-  const Model model = Rig();
-  Simulator a(model), b(model);
-  State sa = a.InitialState(), sb = b.InitialState();
-  for (int i = 0; i < 20000; ++i) {
-    ASSERT_EQ(a.Step(&sa, InputAt(model, sa.step_index)), StepStatus::kOk);
-    ASSERT_EQ(b.Step(&sb, InputAt(model, sb.step_index)), StepStatus::kOk);
-    ASSERT_EQ(std::memcmp(sa.y.data(), sb.y.data(), sizeof(double) * model.state_size), 0)
-        << "step " << i;
-  }
-  // A copied state continues identically: copying the state copies the run.
-  State copy = sa;
-  for (int i = 0; i < 1000; ++i) {
-    ASSERT_EQ(a.Step(&sa, InputAt(model, sa.step_index)), StepStatus::kOk);
-    ASSERT_EQ(b.Step(&copy, InputAt(model, copy.step_index)), StepStatus::kOk);
-  }
-  EXPECT_EQ(std::memcmp(sa.y.data(), copy.y.data(), sizeof(double) * model.state_size), 0);
+  testing::ExpectDropBitIdentical(Rig());
 }
 
 TEST(Step, DivergenceIsReportedNotHidden) {
