@@ -174,17 +174,21 @@ tr -d '\r' < "$RUN/console.log" | sed 's/\x1b\[[0-9;?]*[A-Za-z]//g; s/\x1bc//g' 
 sed '/^VM-OUT-BEGIN$/,/^VM-OUT-END$/d' "$RUN/console.txt" \
   | grep -vE '^\[ *[0-9]+\.[0-9]+\]|^qemu-system|SeaBIOS|iPXE|Booting from|^VM-EXIT=' \
   | sed '/^$/d' || true
-if [ -n "${VMOUT:-}" ] && grep -q '^VM-OUT-END$' "$RUN/console.txt"; then
-  mkdir -p "$VMOUT"
-  sed -n '/^VM-OUT-BEGIN$/,/^VM-OUT-END$/p' "$RUN/console.txt" | sed '1d;$d' \
-    | grep -E '^[A-Za-z0-9+/=]+$' | base64 -d | tar xz -C "$VMOUT" ||
-    echo "run_in_vm: cannot unpack the guest's out folder into $VMOUT" >&2
-fi
 rc=$(sed -n 's/^VM-EXIT=\([0-9]*\)$/\1/p' "$RUN/console.txt" | tail -1)
 if [ -z "$rc" ]; then
   [ "$status" = 124 ] && echo "run_in_vm: the guest did not finish within ${VMTIMEOUT:-300} s" >&2
   echo "run_in_vm: the guest reported no exit status; its console, last 40 lines:" >&2
   tail -40 "$RUN/console.txt" >&2
   exit 3
+fi
+# The results asked for did not come out: an output failed, so the run did not succeed.
+if [ -n "${VMOUT:-}" ] && grep -q '^VM-OUT-BEGIN$' "$RUN/console.txt"; then
+  mkdir -p "$VMOUT"
+  if ! grep -q '^VM-OUT-END$' "$RUN/console.txt" ||
+    ! sed -n '/^VM-OUT-BEGIN$/,/^VM-OUT-END$/p' "$RUN/console.txt" | sed '1d;$d' \
+      | grep -E '^[A-Za-z0-9+/=]+$' | base64 -d | tar xz -C "$VMOUT"; then
+    echo "run_in_vm: cannot unpack the guest's out folder into $VMOUT" >&2
+    [ "$rc" = 0 ] && rc=3
+  fi
 fi
 exit "$rc"
