@@ -162,6 +162,37 @@ TEST(ConfigPowerLoss, KeysOfAnotherCurrentLawAreRefused) {
                         "bias_current_A with current_law = \"exponential\""));
 }
 
+// Trying another law from the command line (a user's --set, a fit's candidate) must not need
+// the file's numbers of the law it replaces deleted: they are left unused. Given by --set, or
+// with the law the file's own, they are still refused.
+TEST(ConfigPowerLoss, ALawSwitchedBySetLeavesTheFilesKeysOfTheOldLawUnused) {
+  const std::string ramp = kLinearised +
+                           "bias_source = \"permanent_magnet\"\n[amb.a.flux_decay]\nenabled = "
+                           "true\ncurrent_law = \"slew_limited_ramp\"\nslew_rate_A_per_s = 10.0\n";
+  const AmbParams exponential = Load(ramp, {"amb.a.flux_decay.current_law=\"exponential\"",
+                                            "amb.a.flux_decay.time_constant_s=4e-3"})
+                                    .ambs.at(0);
+  EXPECT_EQ(exponential.flux_decay.current_law, PowerLossCurrentLaw::kExponential);
+  EXPECT_EQ(exponential.flux_decay.time_constant_s, 4e-3);
+  const AmbParams hold =
+      Load(ramp, {"amb.a.flux_decay.current_law=\"hold_then_exponential\"",
+                  "amb.a.flux_decay.hold_time_s=1e-3", "amb.a.flux_decay.time_constant_s=4e-3"})
+          .ambs.at(0);
+  EXPECT_EQ(hold.flux_decay.current_law, PowerLossCurrentLaw::kHoldThenExponential);
+  EXPECT_EQ(hold.flux_decay.hold_time_s, 1e-3);
+  // The old law's key given on the command line too: refused, pointing at it.
+  EXPECT_THAT(ConfigErrorOf(ramp, {"amb.a.flux_decay.current_law=\"exponential\"",
+                                   "amb.a.flux_decay.time_constant_s=4e-3",
+                                   "amb.a.flux_decay.slew_rate_A_per_s=20"}),
+              HasSubstr("--set amb.a.flux_decay.slew_rate_A_per_s=20: key "
+                        "'amb.a.flux_decay.slew_rate_A_per_s': expected no slew_rate_A_per_s "
+                        "with current_law = \"exponential\""));
+  // A key of another law set on a file whose law stays: refused.
+  EXPECT_THAT(ConfigErrorOf(ramp, {"amb.a.flux_decay.time_constant_s=4e-3"}),
+              HasSubstr("key 'amb.a.flux_decay.time_constant_s': expected no time_constant_s "
+                        "with current_law = \"slew_limited_ramp\""));
+}
+
 TEST(ConfigPowerLoss, NumbersAreRequiredWhenEnabledAndInRange) {
   const std::string ramp = kLinearised +
                            "bias_source = \"permanent_magnet\"\n[amb.a.flux_decay]\n"

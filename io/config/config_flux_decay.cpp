@@ -14,9 +14,13 @@ constexpr std::string_view kExponential = "exponential";
 constexpr std::string_view kRamp = "slew_limited_ramp";
 constexpr std::string_view kHold = "hold_then_exponential";
 
-/// A key of another current law gets a message naming the law that owns it.
+/// A key of another current law gets a message naming the law that owns it. Except where
+/// --set switched the law and the key is the file's: the file's numbers of the law it replaced
+/// are left unused, so that trying another law (a user's --set, a fit's candidate) needs no
+/// way to delete them. In the file itself, and given by --set, such a key is still an error.
 void RejectKeyOfOtherLaw(const TableReader& table, std::string_view key, std::string_view law,
                          std::string_view owner) {
+  if (table.FromOverride("current_law") && table.Has(key) && !table.FromOverride(key)) return;
   table.Reject(key, fmt::format("no {} with current_law = \"{}\" (it belongs to current_law = {})",
                                 key, law, owner));
 }

@@ -294,6 +294,13 @@ void TableReader::Reject(std::string_view key, std::string_view expected) const 
   if (Has(key)) Fail(key, expected);
 }
 
+bool TableReader::FromOverride(std::string_view key) const {
+  const toml::node* node = Find(key);
+  if (node == nullptr) return false;
+  const toml::source_region& source = node->source();
+  return source.path && source.path->starts_with(kOverrideOriginPrefix);
+}
+
 const toml::node& TableReader::Require(std::string_view key, std::string_view expected) const {
   const toml::node* node = Find(key);
   if (node == nullptr) FailMissing(key, expected);

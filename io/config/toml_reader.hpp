@@ -82,6 +82,8 @@ class TableReader {
 
   /// Throws "key: expected `expected`, found ..." if `key` is present.
   void Reject(std::string_view key, std::string_view expected) const;
+  /// Whether `key` is present and was given by a --set override (not by the file or its base).
+  bool FromOverride(std::string_view key) const;
 
   double Number(std::string_view key, const NumberRule& rule) const;
   double Number(std::string_view key, const NumberRule& rule, double fallback) const;

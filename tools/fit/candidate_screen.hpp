@@ -1,9 +1,11 @@
 #pragma once
 // The screening pass of the selection (issue 23 item 3): with hundreds of "the declared value
 // is off" candidates, a full fit of each would take hours. Each one-parameter candidate is run
-// at two values instead, halfway from its declared value to either end of its range, and a
+// at three values instead: halfway from its declared value to either end of its range, where a
 // quadratic through the three residual vectors (declared and the two) predicts how far the best
-// value in the range would cut the error. Only the most promising are then fitted in full.
+// value in the range would cut the error, and a sixteenth of the range away, whose slope
+// predicts a Gauss-Newton step near the declared value. The better prediction counts. Only the
+// most promising are then fitted in full.
 #include <Eigen/Core>
 #include <limits>
 
@@ -14,8 +16,8 @@
 namespace ambdrop {
 
 struct Screening {
-  /// Overall relative RMS by which the prediction moves at most over the range: the larger of
-  /// the two runs' moves and the quadratic's anywhere in the range (the candidate's reach, for
+  /// Overall relative RMS by which the prediction moves at most over the range: the largest of
+  /// the runs' moves and the quadratic's anywhere in the range (the candidate's reach, for
   /// the decidability test).
   double reach = 0.0;
   /// The squared norm of the residual the quadratic predicts at its best value in the range

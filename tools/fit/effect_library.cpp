@@ -256,8 +256,15 @@ Effect CoupleUnbalance(const ModelParams& declared) {
 }
 
 // The force of the given AMBs fading after power loss, with one time constant.
-Effect FluxDecayOf(std::vector<std::string> ambs, std::string name, std::string description,
-                   double declared_tau_s = 0.0) {
+// With a slew-limited ramp declared, a time constant means nothing: the effect is then the
+// exponential law in its place (the config leaves the file's slew rate unused once --set
+// switches the law).
+Effect FluxDecayOf(const std::vector<const AmbParams*>& of, std::string name,
+                   std::string description, double declared_tau_s = 0.0) {
+  std::vector<std::pair<std::string, bool>> ambs;  // name, law switched to exponential
+  for (const AmbParams* a : of) {
+    ambs.emplace_back(a->name, a->flux_decay.current_law == PowerLossCurrentLaw::kSlewLimitedRamp);
+  }
   Effect e;
   e.name = std::move(name);
   e.family = "amb_flux_decay";
@@ -273,8 +280,9 @@ Effect FluxDecayOf(std::vector<std::string> ambs, std::string name, std::string 
   e.probe = {2e-2};  // long: the declared model's loss is instant
   e.overrides = [ambs](const std::vector<double>& v) {
     std::vector<std::string> out;
-    for (const std::string& a : ambs) {
+    for (const auto& [a, switched] : ambs) {
       out.push_back(SetTrue("amb." + a + ".flux_decay.enabled"));
+      if (switched) out.push_back(SetText("amb." + a + ".flux_decay.current_law", "exponential"));
       out.push_back(Set("amb." + a + ".flux_decay.time_constant_s", v[0]));
     }
     return out;
@@ -291,14 +299,16 @@ double DeclaredTau(const std::vector<AmbParams>& ambs) {
 }
 
 Effect FluxDecay(const ModelParams& declared) {
-  std::vector<std::string> ambs;
-  for (const AmbParams& a : declared.ambs) ambs.push_back(a.name);
+  std::vector<const AmbParams*> ambs;
+  for (const AmbParams& a : declared.ambs) ambs.push_back(&a);
   const double tau = DeclaredTau(declared.ambs);
-  return FluxDecayOf(std::move(ambs), "amb_flux_decay",
-                     tau > 0.0 ? fmt::format("AMB force fading after power loss, time constant "
-                                             "refitted (every AMB; declared {:.4g} s)",
-                                             tau)
-                               : "AMB force fading after power loss, exp(-2t/tau) (every AMB)",
+  return FluxDecayOf(ambs, "amb_flux_decay",
+                     tau > 0.0
+                         ? fmt::format("AMB force fading after power loss, time constant "
+                                       "refitted (every AMB; declared {:.4g} s)",
+                                       tau)
+                         : "AMB coil currents fading after power loss as exp(-t/tau) (every AMB; "
+                           "current_law = exponential)",
                      tau);
 }
 
@@ -337,9 +347,10 @@ Effect FluxDecayHold(const ModelParams& declared) {
 Effect FluxDecayAt(const AmbParams& a) {
   const double tau = a.flux_decay.enabled ? a.flux_decay.time_constant_s : 0.0;
   return FluxDecayOf(
-      {a.name}, "amb_flux_decay:" + a.name,
+      {&a}, "amb_flux_decay:" + a.name,
       tau > 0.0 ? fmt::format("AMB {}'s decay time constant alone (declared {:.4g} s)", a.name, tau)
-                : fmt::format("AMB {}'s force alone fading after power loss, exp(-2t/tau)", a.name),
+                : fmt::format("AMB {}'s coil currents alone fading after power loss as exp(-t/tau)",
+                              a.name),
       tau);
 }
 

@@ -258,7 +258,7 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
                          rules.tolerance * rules.tolerance),
                0.5 * s.noise_floor);
   // Singles: the hand-made families each fitted; the registry's many candidates screened
-  // first (two runs each) and only the most promising fitted.
+  // first (three runs each) and only the most promising fitted.
   std::vector<CandidateScore> singles(library.size());
   std::vector<Screening> screenings(library.size());
   const auto fit_single = [&](std::size_t i, const std::vector<KnownStart>& known) {

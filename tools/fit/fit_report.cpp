@@ -479,7 +479,7 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
                      });
     md += fmt::format(
         "\n{} more candidates, \"the declared value is off\" for the config's other physical "
-        "keys, were screened (two runs each) and not fitted: {} could not move the prediction "
+        "keys, were screened (three runs each) and not fitted: {} could not move the prediction "
         "beyond the agreement limit; the others' best predicted relative RMS:",
         screened_only.size() + screened_undecidable, screened_undecidable);
     for (std::size_t i = 0; i < screened_only.size() && i < 8; ++i) {
