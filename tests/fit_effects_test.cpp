@@ -7,6 +7,7 @@
 // do not hide, and names what it cannot see.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -19,6 +20,7 @@
 #include "io/config/config_loader.hpp"
 #include "misaligned_pid_record.hpp"
 #include "test_configs.hpp"
+#include "tools/fit/effect_fit.hpp"
 #include "tools/fit/effect_selection.hpp"
 #include "tools/fit/fit_record.hpp"
 #include "tools/fit/measured_record_maker.hpp"
@@ -510,6 +512,41 @@ TEST(FitVerdicts, TheSimplerOfTwoLookAlikesIsNamedFirst) {
   ASSERT_EQ(s.equivalent.size(), 1u);
   EXPECT_EQ(s.equivalent.front().name, "misalignment_and_gain:de");
   EXPECT_NE(s.reason.find("simpler"), std::string::npos) << s.reason;
+}
+
+// A size and its phase (here a couple unbalance of 2.5e-5 kg m, between the search's grid of
+// sizes 0, 1e-4 and 1e-3 kg m) is found from the few runs of its influence coefficients
+// (tools/fit/effect_fit.cpp), not by searching from the grid: with a budget of four runs per
+// start, the grid's starts alone end far from it.
+TEST(FitSearch, ASizeAndPhaseIsFoundFromItsInfluenceCoefficients) {
+  std::vector<std::string> truth = Timing();
+  truth.push_back("simulation.step_s=2.5e-6");
+  const auto [lo, hi] = TdbSpan();
+  for (const auto& [name, position, phase] :
+       {std::tuple{"a", lo, -1.2}, std::tuple{"b", hi, -1.2 + std::numbers::pi}}) {
+    const std::string u = std::string("unbalance.couple_") + name + ".";
+    truth.push_back(u + "position_m=" + std::to_string(position));
+    truth.push_back(u + "mass_kg=0.0025");
+    truth.push_back(u + "eccentricity_m=0.01");
+    truth.push_back(u + "phase_rad=" + std::to_string(phase));
+  }
+  MeasureOptions noise;
+  noise.current_noise_A = 0.005;
+  const SyntheticMeasurement made = MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), noise);
+  const ConfigVariants variants = testing::LoadTestVariants(kRig, Timing());
+  const RecordCost cost(variants.declared().params, made.measurement, made.record,
+                        RecordRunOptions{});
+  const std::vector<Effect> library = EffectLibrary(variants);
+  const auto couple = std::find_if(library.begin(), library.end(),
+                                   [](const Effect& e) { return e.name == "couple_unbalance"; });
+  ASSERT_NE(couple, library.end());
+  const EffectFit fit = ::ambdrop::FitEffects(variants, cost, {&*couple}, 4);
+  ASSERT_EQ(fit.values.size(), 1u);
+  ASSERT_EQ(fit.values[0].size(), 2u);
+  std::printf("size %.4g kg m, phase %.4f rad, %d runs\n", fit.values[0][0], fit.values[0][1],
+              fit.evaluations);
+  EXPECT_NEAR(fit.values[0][0], 2.5e-5, 0.1 * 2.5e-5);
+  EXPECT_NEAR(std::remainder(fit.values[0][1] + 1.2, 2 * std::numbers::pi), 0.0, 0.1);
 }
 
 TEST(FitVerdicts, FittedPairsAreReportedAsTried) {

@@ -23,6 +23,18 @@ std::vector<std::string> RigConfigFiles() {
   return rigs;
 }
 
+std::vector<std::string> TruthRigConfigFiles() {
+  std::vector<std::string> rigs;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(AMBDROP_SOURCE_DIR) + "/tests/truth")) {
+    if (entry.path().extension() == ".toml") {
+      rigs.push_back("../tests/truth/" + entry.path().filename().string());
+    }
+  }
+  std::sort(rigs.begin(), rigs.end());
+  return rigs;
+}
+
 std::string ConfigErrorOf(const std::string& text, const std::vector<std::string>& overrides) {
   try {
     LoadConfigFromString(text, "test.toml", overrides);

@@ -17,6 +17,8 @@ ModelParams LoadTestConfig(const std::string& file_name,
 
 /// The file names of every rig in configs/ (the scenarios are runs of these), sorted.
 std::vector<std::string> RigConfigFiles();
+/// The independent rigs' translated configs (tests/truth/*.toml), as paths ConfigPath takes.
+std::vector<std::string> TruthRigConfigFiles();
 
 /// The ConfigError a config text (named test.toml) with `overrides` raises, or "no error".
 std::string ConfigErrorOf(const std::string& text, const std::vector<std::string>& overrides = {});

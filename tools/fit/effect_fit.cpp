@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <unsupported/Eigen/LevenbergMarquardt>
 
 namespace ambdrop {
@@ -95,6 +96,59 @@ struct Problem : Eigen::DenseFunctor<double> {
   Eigen::VectorXd best_z;
 };
 
+// A size from zero and its phase (an unbalance, a runout harmonic): what the rotor does is
+// nearly linear in the size's two components, so Gauss-Newton steps in them (a trial size at
+// phase 0 and a quarter turn: the influence coefficients a balancing engineer measures with
+// trial weights) lead to the best size and phase in a few runs. The bounded search's grid of
+// sizes decades apart missed a couple unbalance five times smaller than its smallest start on
+// the magnet-biased flexible rig, whose true value cuts that drop's start 3x.
+bool IsSizeAndPhase(const Effect& e) {
+  return e.parameters.size() == 2 && !e.parameters[0].periodic && e.parameters[0].lower == 0.0 &&
+         e.parameters[1].periodic;
+}
+
+std::vector<double> InfluenceStart(const ConfigVariants& declared, const RecordCost& cost,
+                                   const Effect& e, int* runs) {
+  constexpr int kSteps = 4;
+  const EffectParameter& size = e.parameters[0];
+  double smallest = size.upper;
+  for (const double v : size.starts) {
+    if (v > 0.0) smallest = std::min(smallest, v);
+  }
+  // A tenth of the smallest start: small enough for the response to be linear in it.
+  const double trial = 0.1 * smallest;
+  if (!(trial > 0.0)) return {};
+  const auto residual = [&](const Eigen::Vector2d& c) {
+    ++*runs;
+    return ResidualWithEffects(declared, cost, {&e},
+                               {{std::min(std::hypot(c(0), c(1)), size.upper),
+                                 c.squaredNorm() > 0.0 ? std::atan2(c(1), c(0)) : 0.0}});
+  };
+  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  Eigen::VectorXd r = residual(c);
+  double best_sse = r.squaredNorm();
+  Eigen::Vector2d best = c;
+  for (int k = 0; k < kSteps && r.allFinite(); ++k) {
+    const double h = std::max(trial, 0.05 * c.norm());
+    Eigen::MatrixXd influence(r.size(), 2);
+    for (int axis = 0; axis < 2; ++axis) {
+      Eigen::Vector2d moved = c;
+      moved(axis) += h;
+      influence.col(axis) = (residual(moved) - r) / h;
+    }
+    if (!influence.allFinite() || influence.norm() == 0.0) break;
+    const Eigen::Vector2d next = c + influence.colPivHouseholderQr().solve(-r);
+    if (!next.allFinite()) break;
+    const Eigen::VectorXd r_next = residual(next);
+    if (!(r_next.squaredNorm() < best_sse)) break;
+    best_sse = r_next.squaredNorm();
+    best = c = next;
+    r = r_next;
+  }
+  if (best.squaredNorm() == 0.0) return {};
+  return {std::min(best.norm(), size.upper), std::atan2(best(1), best(0))};
+}
+
 }  // namespace
 
 std::vector<std::string> EffectOverrides(const std::vector<const Effect*>& effects,
@@ -130,11 +184,18 @@ EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
                      const std::vector<const Effect*>& effects, int max_runs_per_start,
                      const RecordCost* screen, const std::vector<KnownStart>& known) {
   std::vector<Flat> flat;
+  EffectFit fit;
+  const RecordCost& search_cost = screen != nullptr ? *screen : cost;
   // Each parameter's starts: what is known of it first, then its own.
   std::vector<std::vector<double>> start_lists;
   std::size_t starts = 1;
   for (std::size_t e = 0; e < effects.size(); ++e) {
     const KnownStart* k = e < known.size() && !known[e].values.empty() ? &known[e] : nullptr;
+    KnownStart influence;
+    if (k == nullptr && IsSizeAndPhase(*effects[e])) {
+      influence.values = InfluenceStart(declared, search_cost, *effects[e], &fit.evaluations);
+      if (!influence.values.empty()) k = &influence;
+    }
     for (std::size_t i = 0; i < effects[e]->parameters.size(); ++i) {
       const EffectParameter& p = effects[e]->parameters[i];
       flat.push_back({effects[e], e, &p});
@@ -145,12 +206,10 @@ EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
       starts = std::max(starts, start_lists.back().size());
     }
   }
-  EffectFit fit;
   for (const Effect* e : effects) fit.effects.push_back(e->name);
   fit.sse = std::numeric_limits<double>::infinity();
   Eigen::VectorXd best_z;
   // One Levenberg-Marquardt search from z; keeps its best point if it beats the best so far.
-  const RecordCost& search_cost = screen != nullptr ? *screen : cost;
   const auto search_from = [&](Eigen::VectorXd z) {
     Problem problem(declared, search_cost, effects, flat, max_runs_per_start);
     Eigen::LevenbergMarquardt<Problem> lm(problem);
