@@ -261,9 +261,11 @@ Truth ApplyEffect(const std::string& kind, std::uint64_t seed, Rig* rig) {
                               {g + "beta_per_m", r.beta_per_m},
                               {g + "hardening_N", r.hardening_N},
                               {g + "hardening_rate_per_m", r.hardening_rate_per_m}};
-    const std::string p = "tdb." + tdb.name + ".four_dof.dahl.";
-    t.ambdrop_keys = {{"tdb." + tdb.name + ".model", "four_dof"},
-                      {"tdb." + tdb.name + ".four_dof.ribbon", "dahl"},
+    // The contact-law TDB's Dahl ribbon (Jarroux 2019 Eq. (1)-(3) in series with the contact):
+    // massless, where the generator's ribbon carries a housing.
+    const std::string table = "tdb." + tdb.name + ".contact_law.";
+    const std::string p = table + "dahl.";
+    t.ambdrop_keys = {{table + "ribbon", "dahl"},
                       {p + "slipping_threshold_N", Num(r.slipping_threshold_N)},
                       {p + "threshold_scale", "1.0"},
                       {p + "slipping_stiffness_N_per_m", Num(r.slipping_stiffness_N_per_m)},
@@ -272,11 +274,10 @@ Truth ApplyEffect(const std::string& kind, std::uint64_t seed, Rig* rig) {
                       {p + "upper_hardening_rate_per_m", Num(r.hardening_rate_per_m)},
                       {p + "lower_hardening_N", Num(r.hardening_N)},
                       {p + "lower_hardening_rate_per_m", Num(r.hardening_rate_per_m)}};
-    t.mapping = "none";
+    t.mapping = "approximate";
     t.mapping_note =
-        "not today: only the 4-DOF TDB carries a Dahl ribbon, and these keys alone do not load "
-        "(the 4-DOF model also needs race masses, a bearing and a housing contact); the "
-        "contact-law TDB's Dahl ribbon (being added) will take them directly";
+        "the contact-law TDB's Dahl ribbon is massless, in series with the contact; the "
+        "generator's ribbon carries a 0.3 kg housing, which no key maps";
   } else if (kind == "race_drag") {
     TdbRig& tdb = rig->tdbs[TdbIndex(*rig, &d)];
     // 10-30 % of the friction torque that spins the race up under half the weight.
