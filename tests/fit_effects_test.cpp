@@ -272,6 +272,37 @@ TEST(FitVerdicts, CleanRecordNeedsNoEffect) {
   EXPECT_EQ(s.limit_after, s.limit);
 }
 
+// A candidate the config refuses (here one writing a key no table has) is neither fitted nor
+// said undecidable: its row and fit.json say the config refuses it, and why. Such a candidate
+// once scored a residual of 1 without a word.
+TEST(FitVerdicts, ACandidateTheConfigRefusesIsSaidSo) {
+  const ConfigVariants variants = testing::LoadTestVariants(kRig, Timing());
+  std::vector<std::string> truth = Timing();
+  truth.push_back("simulation.step_s=2.5e-6");
+  const SyntheticMeasurement made =
+      MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), MeasureOptions{});
+  const RecordCost cost(variants.declared().params, made.measurement, made.record,
+                        RecordRunOptions{});
+  Effect refused;
+  refused.name = "refused_by_the_config";
+  refused.family = "refused_by_the_config";
+  refused.parameters = {{"value", 0.0, 1.0, {0.5}}};
+  refused.revealed_by = {MeasuredQuantity::kDisplacement};
+  refused.probe = {1.0};
+  refused.overrides = [](const std::vector<double>& v) {
+    return std::vector<std::string>{"tdb.de.no_such_key_m=" + std::to_string(v[0])};
+  };
+  const Selection s = SelectEffects(variants, cost, {refused}, cost.NoiseFloor(), SelectionRules{});
+  ASSERT_EQ(s.candidates.size(), 1u);
+  const CandidateScore& c = s.candidates.front();
+  EXPECT_FALSE(c.tried);
+  EXPECT_FALSE(c.decidable);
+  EXPECT_NE(c.refused.find("no_such_key_m"), std::string::npos) << c.refused;
+  EXPECT_NE(s.reason.find("the config refuses refused_by_the_config"), std::string::npos)
+      << s.reason;
+  EXPECT_EQ(s.reason.find("cannot reveal"), std::string::npos) << s.reason;
+}
+
 // Issue 23: a decay declared at the wrong time constant is a candidate like an undeclared one,
 // refitted from its declared value (it used to be left out, and the verdict was unexplained).
 TEST(FitVerdicts, ADeclaredDecayAtTheWrongTimeConstantIsRefitted) {

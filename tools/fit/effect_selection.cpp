@@ -14,6 +14,20 @@
 namespace ambdrop {
 namespace {
 
+// The config's message when it refuses the effect at its first start values, else "".
+std::string RefusedAtStart(const ConfigVariants& declared, const Effect& e) {
+  std::vector<double> start;
+  for (const EffectParameter& p : e.parameters) {
+    start.push_back(p.starts.empty() ? p.lower : p.starts.front());
+  }
+  try {
+    declared.With(e.overrides(start));
+  } catch (const ConfigError& error) {
+    return error.what();
+  }
+  return {};
+}
+
 double Bic(double sse, std::size_t n, std::size_t k) {
   const double N = static_cast<double>(std::max<std::size_t>(n, 1));
   return N * std::log(std::max(sse, 1e-300) / N) + static_cast<double>(k) * std::log(N);
@@ -277,6 +291,11 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
     c.description = e.description;
     c.decidable = Decidable(e, cost.measurement());
     if (!c.decidable) return;
+    c.refused = RefusedAtStart(declared, e);
+    if (!c.refused.empty()) {
+      c.decidable = false;
+      return;
+    }
     if (e.screened && e.parameters.size() == 1) {
       c.screened = true;
       // At the floor nothing could be chosen: the screening's runs would be wasted.
@@ -505,11 +524,16 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
   }
 
   // What the record could not have shown: a verdict of agreement says nothing about these.
-  std::string unseen;
+  std::string unseen, refused;
   for (const CandidateScore& c : singles) {
-    if (!c.decidable) unseen += (unseen.empty() ? "" : ", ") + c.name;
+    if (!c.refused.empty()) {
+      refused += (refused.empty() ? "" : ", ") + c.name;
+    } else if (!c.decidable) {
+      unseen += (unseen.empty() ? "" : ", ") + c.name;
+    }
   }
   if (!unseen.empty()) unseen = "; the record cannot reveal " + unseen;
+  if (!refused.empty()) unseen += "; the config refuses " + refused + " (report.md says why)";
 
   // Other explanations as good as the chosen one: named, so no one takes the choice as proof.
   std::string alike;

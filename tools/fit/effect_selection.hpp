@@ -59,6 +59,11 @@ struct CandidateScore {
   /// false (not fitted): no channel of the record can reveal it, or this record does not show
   /// it even at its probe values (reach below the agreement limit).
   bool decidable = true;
+  /// Not empty: the config refuses the effect at its first start values (the message); it is
+  /// neither decidable nor fitted. A candidate whose every run is refused would otherwise leave
+  /// the residual at 1 without a word (a declared slew-limited ramp once refused every
+  /// exponential flux-decay candidate so).
+  std::string refused;
   /// How far the effect at its probe values (Effect::probe) moves the prediction, as an overall
   /// relative RMS; NaN where not probed.
   double reach = std::numeric_limits<double>::quiet_NaN();

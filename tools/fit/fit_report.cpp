@@ -253,6 +253,7 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     json.Key("effect").String(c.name);
     json.Key("family").String(c.family);
     json.Key("decidable").Bool(c.decidable);
+    if (!c.refused.empty()) json.Key("refused").String(c.refused);
     json.Key("suggested_by_signatures").Bool(Suggested(o.before, c.family));
     json.Key("tried").Bool(c.tried);
     json.Key("screened").Bool(c.screened);
@@ -285,6 +286,7 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     if (c == nullptr || c->decidable) continue;
     json.BeginObject(true);
     json.Key("effect").String(e.name);
+    if (!c->refused.empty()) json.Key("refused").String(c->refused);
     // The quantities that would reveal it and the record lacks.
     json.Key("needs").BeginArray(true);
     for (const MeasuredQuantity q : e.revealed_by) {
@@ -449,6 +451,11 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
       } else {
         ++screened_undecidable;
       }
+      continue;
+    }
+    if (!c.refused.empty()) {
+      md +=
+          fmt::format("| {} | | not fitted: the config refuses it ({}) | | |\n", c.name, c.refused);
       continue;
     }
     if (!c.decidable && std::isfinite(c.reach)) {
