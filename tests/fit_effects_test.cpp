@@ -127,15 +127,15 @@ std::string UnbalancePlane() {
 }
 
 // A couple unbalance as the library fits it: equal masses in the outermost TDB planes, half a
-// turn apart, here 1e-4 kg m each.
-std::vector<std::string> CoupleUnbalanceTruth() {
+// turn apart at -1.2 rad, of mass_kg x 0.01 m each (1e-4 kg m by default).
+std::vector<std::string> CoupleUnbalanceTruth(double mass_kg = 0.01) {
   const auto [lo, hi] = TdbSpan();
   std::vector<std::string> keys;
   for (const auto& [name, position, phase] :
        {std::tuple{"a", lo, -1.2}, std::tuple{"b", hi, -1.2 + std::numbers::pi}}) {
     const std::string u = std::string("unbalance.couple_") + name + ".";
     keys.push_back(u + "position_m=" + std::to_string(position));
-    keys.push_back(u + "mass_kg=0.01");
+    keys.push_back(u + "mass_kg=" + std::to_string(mass_kg));
     keys.push_back(u + "eccentricity_m=0.01");
     keys.push_back(u + "phase_rad=" + std::to_string(phase));
   }
@@ -552,15 +552,7 @@ TEST(FitVerdicts, TheSimplerOfTwoLookAlikesIsNamedFirst) {
 TEST(FitSearch, ASizeAndPhaseIsFoundFromItsInfluenceCoefficients) {
   std::vector<std::string> truth = Timing();
   truth.push_back("simulation.step_s=2.5e-6");
-  const auto [lo, hi] = TdbSpan();
-  for (const auto& [name, position, phase] :
-       {std::tuple{"a", lo, -1.2}, std::tuple{"b", hi, -1.2 + std::numbers::pi}}) {
-    const std::string u = std::string("unbalance.couple_") + name + ".";
-    truth.push_back(u + "position_m=" + std::to_string(position));
-    truth.push_back(u + "mass_kg=0.0025");
-    truth.push_back(u + "eccentricity_m=0.01");
-    truth.push_back(u + "phase_rad=" + std::to_string(phase));
-  }
+  for (const std::string& key : CoupleUnbalanceTruth(0.0025)) truth.push_back(key);
   MeasureOptions noise;
   noise.current_noise_A = 0.005;
   const SyntheticMeasurement made = MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), noise);
