@@ -17,6 +17,18 @@ double RadialLoadIntegral() {
 }
 
 BallBearingCoefficients BallBearingFromHertz(const BallBearingParams& p) {
+  if (p.law == BearingLaw::kLinear) {
+    // A rig sheet's kbrg and cbrg: the force law is the linearised one (Jarroux 2019 Sec. 3.1)
+    // with its numbers given rather than derived from Hertz's.
+    if (!(p.stiffness_N_per_m > 0.0) || !(p.damping_N_s_per_m >= 0.0)) {
+      throw std::invalid_argument(
+          "ball bearing: a linear bearing needs a positive stiffness and a damping >= 0");
+    }
+    BallBearingCoefficients c;
+    c.stiffness_N_per_m = p.stiffness_N_per_m;
+    c.damping_N_s_per_m = p.damping_N_s_per_m;
+    return c;
+  }
   if (p.balls <= 0 || !(p.inner_contact_stiffness_N_per_m1_5 > 0.0) ||
       !(p.outer_contact_stiffness_N_per_m1_5 > 0.0) || !(p.operating_load_N > 0.0) ||
       !(std::cos(p.contact_angle_rad) > 0.0) || !(p.quadratic_stiffness_N_per_m2 >= 0.0)) {

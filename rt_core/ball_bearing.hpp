@@ -24,12 +24,13 @@ double RadialLoadIntegral();
 /// K, kbrg and cbrg of the bearing: Fr = Z kn cos^(5/2)(alpha_c) Jr ur^(3/2) (Eq. (5)-(6)),
 /// kbrg = dFr/dur = 3/2 K^(2/3) F0^(1/3) at the operating load F0, cbrg = factor 1e-5 kbrg
 /// (Eq. (8)); kq of the quadratic law as given, or the secant F0 / ur0^2 through the Hertz
-/// operating point. Throws std::invalid_argument on non-positive inputs.
+/// operating point. The linear law takes kbrg and cbrg as given (K and kq stay 0).
+/// Throws std::invalid_argument on non-positive inputs.
 BallBearingCoefficients BallBearingFromHertz(const BallBearingParams& params);
 
 /// Force (N) the balls put on the inner race for the inner-race displacement (dx, dy) and
 /// velocity (dvx, dvy) relative to the outer race; the outer race gets the opposite.
-///   linearised: f = -(kbrg d + cbrg d'),
+///   linearised or linear: f = -(kbrg d + cbrg d'),
 ///   Hertz:      f = -(K |d|^(3/2) d/|d| + cbrg d')   (Jarroux 2019 Eq. (5), (8)),
 ///   quadratic:  f = -(kq |d|^2 d/|d| + cbrg d')      (Jarroux 2016 (seed 001), Sec. 2).
 inline void BallBearingForce(BearingLaw law, const BallBearingCoefficients& c, double dx, double dy,

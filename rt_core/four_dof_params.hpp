@@ -15,6 +15,7 @@ enum class BearingLaw {
   kHertzLinearised,  ///< kbrg, cbrg linearised at an operating load (Jarroux 2019 Sec. 3.1)
   kHertz,            ///< Fr = K ur^(3/2) (Jarroux 2019 Eq. (5), zero internal clearance)
   kQuadratic,        ///< Fr = kq ur^2 (Jarroux 2016 (seed 001), Sec. 2: "a quadratic law")
+  kLinear,           ///< kbrg, cbrg given directly (a rig sheet's linear bearing)
 };
 
 /// Ball bearing between the races from Hertz theory, Jarroux 2019 Eq. (5)-(8) (Harris).
@@ -29,6 +30,8 @@ struct BallBearingParams {
   /// kq (N/m^2) of the quadratic law; 0: the secant through the Hertz operating point,
   /// kq = F0 / ur0^2, so that both laws deflect alike under the operating load.
   double quadratic_stiffness_N_per_m2 = 0.0;
+  double stiffness_N_per_m = 0.0;  ///< kbrg of the linear law (the Hertz data then unused)
+  double damping_N_s_per_m = 0.0;  ///< cbrg of the linear law
 };
 
 enum class RibbonLaw {

@@ -64,6 +64,21 @@ TEST(ConfigFourDof, SwitchesSelectTheLaws) {
   EXPECT_EQ(base.tdbs.at(0).model(), TdbModelKind::kContactLaw);
 }
 
+// A rig sheet's linear bearing (kb, cb) is declared as given: the independent 4-DOF rig's
+// translation (tests/truth/rigid_fourdof_c.toml) reads back its numbers, and the races sag by
+// the weights over them (the TDB's own static start, tests/four_dof_tdb_test.cpp).
+TEST(ConfigFourDof, ALinearBearingTakesTheSheetsNumbers) {
+  const ModelParams p = testing::LoadTestConfig("../tests/truth/rigid_fourdof_c.toml",
+                                                {"tdb.de.four_dof.bearing.damping_N_s_per_m=0"});
+  for (const TdbParams& t : p.tdbs) {
+    const BallBearingParams& b = t.four_dof().bearing;
+    EXPECT_EQ(b.law, BearingLaw::kLinear);
+    EXPECT_EQ(b.stiffness_N_per_m, 1.5e8);
+    EXPECT_EQ(b.damping_N_s_per_m, t.name == "de" ? 0.0 : 1500.0);
+    EXPECT_FALSE(t.four_dof().housing_contact_enabled);
+  }
+}
+
 TEST(ConfigFourDof, ErrorsNameFileLineKeyAndExpectation) {
   const std::string model2 = "jarroux2019_industrial_model2.toml";
   EXPECT_THAT(ErrorOf(model2, {"tdb.de.four_dof.ribon=\"dahl\""}),
@@ -73,7 +88,12 @@ TEST(ConfigFourDof, ErrorsNameFileLineKeyAndExpectation) {
                         "([tdb.de.four_dof.dahl])"));
   EXPECT_THAT(ErrorOf(model2, {"tdb.de.four_dof.bearing_law=\"harris\""}),
               HasSubstr("key 'tdb.de.four_dof.bearing_law': expected one of "
-                        "\"hertz_linearised\", \"hertz\", \"quadratic\", found \"harris\""));
+                        "\"hertz_linearised\", \"hertz\", \"quadratic\", \"linear\", found "
+                        "\"harris\""));
+  // The linear law reads the sheet's kbrg and cbrg, and none of the Hertz data.
+  EXPECT_THAT(ErrorOf(model2, {"tdb.de.four_dof.bearing_law=\"linear\""}),
+              HasSubstr("unknown key 'tdb.de.four_dof.bearing.balls' (allowed here: "
+                        "stiffness_N_per_m, damping_N_s_per_m)"));
   EXPECT_THAT(ErrorOf(model2, {"tdb.de.four_dof.bearing.balls=0"}),
               HasSubstr("key 'tdb.de.four_dof.bearing.balls': expected an integer >= 1"));
   EXPECT_THAT(ErrorOf(model2, {"tdb.de.four_dof.inner_contact.exponent=3.0"}),

@@ -8,7 +8,9 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <stdexcept>
 
+#include "rt_core/ball_bearing.hpp"
 #include "rt_core/four_dof_tdb.hpp"
 #include "rt_core/ribbon_dahl.hpp"
 
@@ -34,7 +36,7 @@ TdbParams Tdb(RibbonLaw ribbon = RibbonLaw::kKelvinVoigt,
   f.gravity_y_m_s2 = 0.0;
   f.inner_contact = {5e9, 1.0, 0.2};
   f.housing_contact = {4e9, 1.0, 0.3};
-  f.bearing = {bearing, 40, 0.0, 8e9, 8e9, 1000.0, 1.0, 0.0};
+  f.bearing = {bearing, 40, 0.0, 8e9, 8e9, 1000.0, 1.0, 0.0, 2e8, 2e3};
   f.ribbon = ribbon;
   f.kelvin_voigt = {5e6, 7e3};
   f.dahl = {400.0, 1.0, 5e6, 6e4, 20.0, 2.5e4, 20.0, 2.5e4};
@@ -50,7 +52,8 @@ TEST(FourDofTdb, StateSizePerRibbon) {
 
 TEST(FourDofTdb, RacesStartInStaticEquilibriumUnderGravity) {
   for (const RibbonLaw ribbon : {RibbonLaw::kKelvinVoigt, RibbonLaw::kDahl}) {
-    for (const BearingLaw law : {BearingLaw::kHertzLinearised, BearingLaw::kHertz}) {
+    for (const BearingLaw law :
+         {BearingLaw::kHertzLinearised, BearingLaw::kHertz, BearingLaw::kLinear}) {
       TdbParams p = Tdb(ribbon, law);
       p.four_dof().gravity_y_m_s2 = -9.81;
       const FourDofTdb tdb(p);
@@ -64,8 +67,26 @@ TEST(FourDofTdb, RacesStartInStaticEquilibriumUnderGravity) {
       // The housing carries both races' weight: 0.9 kg * 9.81.
       EXPECT_NEAR(f.support_force_N(), 0.9 * 9.81, 1e-9);
       EXPECT_EQ(f.normal_force_N, 0.0);
+      // A sheet's linear bearing: the inner race sags its own weight over the given kbrg.
+      if (law == BearingLaw::kLinear) {
+        EXPECT_NEAR(s[S::kInnerY] - s[S::kOuterY], -0.4 * 9.81 / 2e8, 1e-18);
+      }
     }
   }
+}
+
+// The linear law's force is kbrg d + cbrg d' with the sheet's numbers, whatever the Hertz data.
+TEST(FourDofTdb, ALinearBearingPullsWithTheSheetsStiffnessAndDamping) {
+  const BallBearingCoefficients c =
+      BallBearingFromHertz(Tdb(RibbonLaw::kKelvinVoigt, BearingLaw::kLinear).four_dof().bearing);
+  double fx = 0.0, fy = 0.0;
+  BallBearingForce(BearingLaw::kLinear, c, 3e-6, -4e-6, 0.01, 0.02, &fx, &fy);
+  EXPECT_DOUBLE_EQ(fx, -(2e8 * 3e-6 + 2e3 * 0.01));
+  EXPECT_DOUBLE_EQ(fy, -(2e8 * -4e-6 + 2e3 * 0.02));
+  BallBearingParams missing = Tdb().four_dof().bearing;
+  missing.law = BearingLaw::kLinear;
+  missing.stiffness_N_per_m = 0.0;
+  EXPECT_THROW(BallBearingFromHertz(missing), std::invalid_argument);
 }
 
 TEST(FourDofTdb, JournalHitsTheInnerRace) {

@@ -159,6 +159,71 @@ TEST(TruthGenerator, FrictionalContactNeverAddsEnergy) {
   EXPECT_LT(previous, start - 1e-3 * std::abs(start));
 }
 
+// The same with 4-DOF mounts (Jarroux 2019 models #2: inner race on a linear bearing on an
+// outer race on a Kelvin-Voigt ribbon) and a Hertzian Hunt-Crossley contact: the races' and
+// springs' energy counted, the contact's k u^(n+1)/(n+1), the bearing's and ribbon's damping
+// and friction only take energy away.
+TEST(TruthGenerator, FourDofMountsNeverAddEnergy) {
+  Rig rig = RigA();
+  for (TdbRig& t : rig.tdbs) {
+    t.contact_law = ContactLaw::kHuntCrossley;
+    t.contact_exponent = 1.5;
+    t.contact_stiffness = 8e9;
+    t.contact_damping = 0.3;
+    t.four_dof = {true, 0.35, 0.45, 1.5e8, 1500.0, 3e7, 3000.0};
+  }
+  Plant plant(rig);
+  const StateLayout& L = plant.layout();
+  PlantState y = plant.ZeroState();
+  y(L.vx(0)) = 0.05;
+  y(L.vy(0)) = -0.08;
+  y(L.vy(1)) = -0.1;
+  y(L.spin()) = rig.spin_speed_rad_s;
+  PlantInput input;
+  input.motor_on = false;
+  double previous = plant.Energy(y);
+  const double start = previous;
+  int touches = 0;
+  double largest_outer_race_m = 0.0;
+  PlantState rate;
+  PlantOutputs out;
+  for (int k = 0; k < 40000; ++k) {
+    plant.Step(&y, input);
+    const double e = plant.Energy(y);
+    EXPECT_LE(e, previous + 1e-9 * std::abs(start)) << "step " << k;
+    previous = e;
+    plant.Derivative(y, input, &rate, &out);
+    touches += out.tdb[0].normal_N > 0.0 || out.tdb[1].normal_N > 0.0;
+    largest_outer_race_m = std::max(largest_outer_race_m, std::abs(y(L.outer_race(0) + 1)));
+  }
+  EXPECT_GT(touches, 100);
+  EXPECT_GT(largest_outer_race_m, 1e-6);  // the mount moved: its energy was in play
+  EXPECT_LT(previous, start - 1e-3 * std::abs(start));
+}
+
+// A 4-DOF mount at rest: the equilibrium start sags the outer race by the races' weight over
+// the ribbon's stiffness and the inner race by its own over the bearing's, so that nothing
+// moves; the load cell reads the ribbon's force on the housing, the races' weight.
+TEST(TruthGenerator, FourDofMountStartsAtItsStaticSag) {
+  Rig rig = RigA();
+  rig.tdbs[1].four_dof = {true, 0.35, 0.45, 1.5e8, 1500.0, 3e7, 3000.0};
+  std::array<std::array<double, 2>, 2> held{};
+  const PlantState y = EquilibriumState(rig, &held);
+  Plant plant(rig);
+  const StateLayout& L = plant.layout();
+  const double g = rig.gravity_m_s2;
+  EXPECT_NEAR(y(L.outer_race(1) + 1), -0.8 * g / 3e7, 1e-15);
+  EXPECT_NEAR(y(L.housing(1) + 1) - y(L.outer_race(1) + 1), -0.35 * g / 1.5e8, 1e-15);
+  PlantInput input;  // the races' rates do not depend on the coils
+  PlantState rate;
+  PlantOutputs out;
+  plant.Derivative(y, input, &rate, &out);
+  EXPECT_NEAR(rate(L.housing(1) + 3), 0.0, 1e-9);
+  EXPECT_NEAR(rate(L.outer_race(1) + 3), 0.0, 1e-9);
+  EXPECT_NEAR(out.support_N[1][1], -0.8 * g, 1e-9);
+  EXPECT_EQ(out.tdb[1].normal_N, 0.0);
+}
+
 // The same rig and seed give the same record to the bit; another seed, other noise.
 TEST(TruthGenerator, RepeatRunsAreBitIdentical) {
   Rig rig = RigA();

@@ -38,12 +38,21 @@ HuntCrossleyParams ReadHousingContact(const TableReader& four_dof, bool* enabled
   return params;
 }
 
-BallBearingParams ReadBallBearing(const TableReader& four_dof) {
+// The linear law takes kbrg and cbrg from the sheet; the Hertz laws derive them from the balls
+// (Jarroux 2019 Eq. (5)-(8)), so each reads only its own keys.
+BallBearingParams ReadBallBearing(const TableReader& four_dof, BearingLaw law) {
   const TableReader table = four_dof.Table("bearing");
+  BallBearingParams params;
+  params.law = law;
+  if (law == BearingLaw::kLinear) {
+    table.AllowOnly({"stiffness_N_per_m", "damping_N_s_per_m"});
+    params.stiffness_N_per_m = table.Number("stiffness_N_per_m", Positive());
+    params.damping_N_s_per_m = table.Number("damping_N_s_per_m", NonNegative());
+    return params;
+  }
   table.AllowOnly({"balls", "contact_angle_rad", "inner_contact_stiffness_N_per_m1_5",
                    "outer_contact_stiffness_N_per_m1_5", "operating_load_N", "damping_factor",
                    "quadratic_stiffness_N_per_m2"});
-  BallBearingParams params;
   if (!table.Has("balls")) table.FailMissing("balls", "an integer >= 1");
   params.balls = table.Integer("balls", 1, INT_MAX, 0);
   params.contact_angle_rad =
@@ -169,12 +178,12 @@ FourDofParams ReadFourDof(const TableReader& tdb, const GravityParams& gravity) 
   params.gravity_y_m_s2 = gravity.enabled ? -gravity.acceleration_m_s2 : 0.0;
   params.inner_contact = ReadHuntCrossley(table, "inner_contact");
   params.housing_contact = ReadHousingContact(table, &params.housing_contact_enabled);
-  params.bearing = ReadBallBearing(table);
   const std::string bearing_law =
-      table.Choice("bearing_law", {"hertz_linearised", "hertz", "quadratic"});
-  params.bearing.law = bearing_law == "hertz"       ? BearingLaw::kHertz
-                       : bearing_law == "quadratic" ? BearingLaw::kQuadratic
-                                                    : BearingLaw::kHertzLinearised;
+      table.Choice("bearing_law", {"hertz_linearised", "hertz", "quadratic", "linear"});
+  params.bearing = ReadBallBearing(table, bearing_law == "hertz"       ? BearingLaw::kHertz
+                                          : bearing_law == "quadratic" ? BearingLaw::kQuadratic
+                                          : bearing_law == "linear"    ? BearingLaw::kLinear
+                                                                    : BearingLaw::kHertzLinearised);
   const std::string ribbon = table.Choice("ribbon", {"kelvin_voigt", "dahl", "cross_coupled"});
   params.ribbon = ribbon == "dahl"            ? RibbonLaw::kDahl
                   : ribbon == "cross_coupled" ? RibbonLaw::kCrossCoupled

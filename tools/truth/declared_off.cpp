@@ -130,6 +130,21 @@ std::vector<DeclaredEntry> DeclaredOffEntries(const Rig& rig) {
                               [](Rig* r) { return &r->power_loss.slew_rate_A_per_s; });
     slew.also_ambdrop_keys = {"amb." + rig.ambs[1].name + ".flux_decay.slew_rate_A_per_s"};
   }
+  if (rig.power_loss.form == FluxDecayForm::kFormA ||
+      rig.power_loss.form == FluxDecayForm::kFormB) {
+    const std::string amb0 = "amb." + rig.ambs[0].name + ".flux_decay.";
+    const std::string amb1 = "amb." + rig.ambs[1].name + ".flux_decay.";
+    DeclaredEntry& tau = add("power_loss.time_constant_s", K::kFactor, amb0 + "time_constant_s",
+                             [](Rig* r) { return &r->power_loss.time_constant_s; });
+    tau.also_ambdrop_keys = {amb1 + "time_constant_s"};
+    if (rig.power_loss.form == FluxDecayForm::kFormB) {
+      // Form b's tau is the force's; ambdrop's is the currents' (the force goes as their square).
+      tau.ambdrop_value = [](const Rig&, double v) { return Shortest(2.0 * v); };
+      DeclaredEntry& hold = add("power_loss.hold_time_s", K::kFactor, amb0 + "hold_time_s",
+                                [](Rig* r) { return &r->power_loss.hold_time_s; });
+      hold.also_ambdrop_keys = {amb1 + "hold_time_s"};
+    }
+  }
 
   for (int i = 0; i < 2; ++i) {
     const std::string g = "ambs." + rig.ambs[i].name + ".";
@@ -228,18 +243,21 @@ std::vector<DeclaredEntry> DeclaredOffEntries(const Rig& rig) {
         [i](Rig* r) { return &r->tdbs[i].position_m; });
     DeclaredEntry& clearance = add(g + "clearance_m", K::kFactor, k + "clearance_m",
                                    [i](Rig* r) { return &r->tdbs[i].clearance_m; });
-    clearance.mapping = "approximate";
-    clearance.mapping_note = race_radius_note;
     DeclaredEntry& journal = add(g + "journal_radius_m", K::kFactor, k + "journal_radius_m",
                                  [i](Rig* r) { return &r->tdbs[i].journal_radius_m; });
-    journal.mapping = "approximate";
-    journal.mapping_note = race_radius_note;
     // The sheet gives no inner-race radius: the generator takes the journal radius for it, so
-    // the two move together.
+    // the two move together, and the translation leaves ambdrop's at its default.
     if (rig.tdbs[i].inner_race_radius_m == rig.tdbs[i].journal_radius_m) {
+      clearance.mapping = "approximate";
+      clearance.mapping_note = race_radius_note;
+      journal.mapping = "approximate";
+      journal.mapping_note = race_radius_note;
       journal.follow = [i](Rig* r) {
         r->tdbs[i].inner_race_radius_m = r->tdbs[i].journal_radius_m;
       };
+    } else {
+      add(g + "inner_race_radius_m", K::kFactor, k + "inner_race_radius_m",
+          [i](Rig* r) { return &r->tdbs[i].inner_race_radius_m; });
     }
     add(g + "friction.coefficient", K::kFactor, k + "friction.coefficient",
         [i](Rig* r) { return &r->tdbs[i].friction_coefficient; });
@@ -247,10 +265,32 @@ std::vector<DeclaredEntry> DeclaredOffEntries(const Rig& rig) {
         [i](Rig* r) { return &r->tdbs[i].race_inertia_kg_m2; });
     add(g + "race.viscous_drag_N_m_s", K::kFactor, k + "spin.rotational_damping_N_m_s",
         [i](Rig* r) { return &r->tdbs[i].race_viscous_drag_N_m_s; });
-    add(g + "contact.stiffness_N_per_m", K::kFactor, k + "contact_law.bearing_stiffness_N_per_m",
+    if (!rig.tdbs[i].four_dof.enabled) {
+      add(g + "contact.stiffness_N_per_m", K::kFactor, k + "contact_law.bearing_stiffness_N_per_m",
+          [i](Rig* r) { return &r->tdbs[i].contact_stiffness; });
+      add(g + "contact.damping_N_s_per_m", K::kFactor, k + "contact_law.bearing_damping_N_s_per_m",
+          [i](Rig* r) { return &r->tdbs[i].contact_damping; });
+      continue;
+    }
+    // A 4-DOF TDB (Jarroux 2019 model #2): Hunt-Crossley journal / inner race, the races'
+    // masses, a linear bearing and a Kelvin-Voigt ribbon.
+    const std::string f = k + "four_dof.";
+    add(g + "contact.stiffness_N_per_m_n", K::kFactor, f + "inner_contact.stiffness_N_per_m_n",
         [i](Rig* r) { return &r->tdbs[i].contact_stiffness; });
-    add(g + "contact.damping_N_s_per_m", K::kFactor, k + "contact_law.bearing_damping_N_s_per_m",
+    add(g + "contact.damping_s_per_m", K::kFactor, f + "inner_contact.damping_s_per_m",
         [i](Rig* r) { return &r->tdbs[i].contact_damping; });
+    add(g + "four_dof.inner_race_mass_kg", K::kFactor, f + "inner_race_mass_kg",
+        [i](Rig* r) { return &r->tdbs[i].four_dof.inner_race_mass_kg; });
+    add(g + "four_dof.outer_race_mass_kg", K::kFactor, f + "outer_race_mass_kg",
+        [i](Rig* r) { return &r->tdbs[i].four_dof.outer_race_mass_kg; });
+    add(g + "four_dof.bearing.stiffness_N_per_m", K::kFactor, f + "bearing.stiffness_N_per_m",
+        [i](Rig* r) { return &r->tdbs[i].four_dof.bearing_stiffness_N_per_m; });
+    add(g + "four_dof.bearing.damping_N_s_per_m", K::kFactor, f + "bearing.damping_N_s_per_m",
+        [i](Rig* r) { return &r->tdbs[i].four_dof.bearing_damping_N_s_per_m; });
+    add(g + "four_dof.ribbon.stiffness_N_per_m", K::kFactor, f + "kelvin_voigt.stiffness_N_per_m",
+        [i](Rig* r) { return &r->tdbs[i].four_dof.ribbon_stiffness_N_per_m; });
+    add(g + "four_dof.ribbon.damping_N_s_per_m", K::kFactor, f + "kelvin_voigt.damping_N_s_per_m",
+        [i](Rig* r) { return &r->tdbs[i].four_dof.ribbon_damping_N_s_per_m; });
   }
   return out;
 }

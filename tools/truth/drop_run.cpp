@@ -70,9 +70,20 @@ PlantState EquilibriumState(const Rig& rig, std::array<std::array<double, 2>, 2>
   PlantState y = plant.ZeroState();
   y(L.spin()) = rig.spin_speed_rad_s;
   for (int t = 0; t < 2; ++t) {
-    // The ribbon holds the housing's weight.
-    if (rig.tdbs[t].dahl.enabled) {
-      y(L.housing(t) + 5) = -rig.tdbs[t].dahl.housing_mass_kg * rig.gravity_m_s2;
+    const TdbRig& tdb = rig.tdbs[t];
+    if (tdb.four_dof.enabled) {
+      // The races sag on the bearing and the ribbon under their weight; a Dahl ribbon starts
+      // undeflected, carrying it.
+      const FourDofMountRig& m = tdb.four_dof;
+      const double weight_N = (m.inner_race_mass_kg + m.outer_race_mass_kg) * rig.gravity_m_s2;
+      const double outer_y = tdb.dahl.enabled ? 0.0 : -weight_N / m.ribbon_stiffness_N_per_m;
+      y(L.outer_race(t) + 1) = outer_y;
+      y(L.housing(t) + 1) =
+          outer_y - m.inner_race_mass_kg * rig.gravity_m_s2 / m.bearing_stiffness_N_per_m;
+      if (tdb.dahl.enabled) y(L.housing(t) + 5) = -weight_N;
+    } else if (tdb.dahl.enabled) {
+      // The ribbon holds the housing's weight.
+      y(L.housing(t) + 5) = -tdb.dahl.housing_mass_kg * rig.gravity_m_s2;
     }
   }
   if (!rig.shaft.enabled) {
@@ -309,11 +320,17 @@ RunResult RunDrop(const Rig& rig, std::uint64_t seed, const RunOptions& options)
             y(L.race(tdb)) + recorded(12 + tdb, rig.acquisition.speed_noise_rpm / kRpmPerRadPerS);
         row.normal_force_N[tdb] =
             outputs.tdb[tdb].normal_N + recorded(15 + tdb, rig.acquisition.force_noise_N);
-        // The load cell under the housing reads the contact's reaction (its tare removed).
+        // The load cell under the housing reads the force on it, its tare (the races' weight
+        // on a 4-DOF mount) removed.
+        const FourDofMountRig& mount = rig.tdbs[tdb].four_dof;
+        const double tare_y =
+            mount.enabled
+                ? -(mount.inner_race_mass_kg + mount.outer_race_mass_kg) * rig.gravity_m_s2
+                : 0.0;
         row.support_force_N[tdb][0] =
-            -outputs.tdb[tdb].fx_N + recorded(17 + 2 * tdb, rig.acquisition.force_noise_N);
-        row.support_force_N[tdb][1] =
-            -outputs.tdb[tdb].fy_N + recorded(18 + 2 * tdb, rig.acquisition.force_noise_N);
+            outputs.support_N[tdb][0] + recorded(17 + 2 * tdb, rig.acquisition.force_noise_N);
+        row.support_force_N[tdb][1] = outputs.support_N[tdb][1] - tare_y +
+                                      recorded(18 + 2 * tdb, rig.acquisition.force_noise_N);
       }
       row.rotor_speed_rad_s =
           y(L.spin()) + recorded(14, rig.acquisition.speed_noise_rpm / kRpmPerRadPerS);

@@ -252,18 +252,26 @@ Truth ApplyEffect(const std::string& kind, std::uint64_t seed, Rig* rig) {
     r.hardening_N = 5.0;
     r.hardening_rate_per_m = 2e4;
     t.description =
-        fmt::format("a generalized Dahl ribbon (muFN {:.1f} N) under TDB {}'s housing (0.3 kg)",
-                    r.slipping_threshold_N, tdb.name);
+        tdb.four_dof.enabled
+            ? fmt::format("a generalized Dahl ribbon (muFN {:.1f} N) under TDB {}'s outer race",
+                          r.slipping_threshold_N, tdb.name)
+            : fmt::format(
+                  "a generalized Dahl ribbon (muFN {:.1f} N) under TDB {}'s housing (0.3 kg)",
+                  r.slipping_threshold_N, tdb.name);
     const std::string g = "tdbs." + tdb.name + ".dahl.";
-    t.generator_parameters = {{g + "housing_mass_kg", r.housing_mass_kg},
-                              {g + "slipping_threshold_N", r.slipping_threshold_N},
+    t.generator_parameters = {{g + "slipping_threshold_N", r.slipping_threshold_N},
                               {g + "slipping_stiffness_N_per_m", r.slipping_stiffness_N_per_m},
                               {g + "beta_per_m", r.beta_per_m},
                               {g + "hardening_N", r.hardening_N},
                               {g + "hardening_rate_per_m", r.hardening_rate_per_m}};
+    if (!tdb.four_dof.enabled) {
+      t.generator_parameters.emplace_back(g + "housing_mass_kg", r.housing_mass_kg);
+    }
     // The contact-law TDB's Dahl ribbon (Jarroux 2019 Eq. (1)-(3) in series with the contact):
-    // massless, where the generator's ribbon carries a housing.
-    const std::string table = "tdb." + tdb.name + ".contact_law.";
+    // massless, where the generator's ribbon carries a housing. The 4-DOF TDB's (model #3)
+    // carries the outer race, as the generator's does there.
+    const std::string table =
+        "tdb." + tdb.name + (tdb.four_dof.enabled ? ".four_dof." : ".contact_law.");
     const std::string p = table + "dahl.";
     t.ambdrop_keys = {{table + "ribbon", "dahl"},
                       {p + "slipping_threshold_N", Num(r.slipping_threshold_N)},
@@ -274,10 +282,12 @@ Truth ApplyEffect(const std::string& kind, std::uint64_t seed, Rig* rig) {
                       {p + "upper_hardening_rate_per_m", Num(r.hardening_rate_per_m)},
                       {p + "lower_hardening_N", Num(r.hardening_N)},
                       {p + "lower_hardening_rate_per_m", Num(r.hardening_rate_per_m)}};
-    t.mapping = "approximate";
-    t.mapping_note =
-        "the contact-law TDB's Dahl ribbon is massless, in series with the contact; the "
-        "generator's ribbon carries a 0.3 kg housing, which no key maps";
+    if (!tdb.four_dof.enabled) {
+      t.mapping = "approximate";
+      t.mapping_note =
+          "the contact-law TDB's Dahl ribbon is massless, in series with the contact; the "
+          "generator's ribbon carries a 0.3 kg housing, which no key maps";
+    }
   } else if (kind == "race_drag") {
     TdbRig& tdb = rig->tdbs[TdbIndex(*rig, &d)];
     // 10-30 % of the friction torque that spins the race up under half the weight.

@@ -108,10 +108,39 @@ void Plant::Derivative(const PlantState& y, const PlantInput& in, PlantState* ra
     j.spin_rad_s = spin;
     const ContactForces c = EvaluateContact(tdb, j, y(L.race(t)));
     out->tdb[t] = c;
+    out->support_N[t] = {-c.fx_N, -c.fy_N};
     apply(tdb.position_m, c.fx_N, c.fy_N);
     spin_torque += c.spin_torque_N_m;
     (*rate)(L.race(t)) = c.race_acceleration_rad_s2;
-    if (tdb.dahl.enabled) {
+    if (tdb.four_dof.enabled) {
+      // Jarroux 2019 models #2/#3 (Sec. 4.1): the inner race takes the contact's reaction,
+      // its weight and the bearing (linearised, Sec. 3.1); the outer race the bearing, its
+      // weight and the ribbon (Eq. (4), or Eq. (1)-(3) with the Dahl ribbon).
+      const FourDofMountRig& m = tdb.four_dof;
+      const int o = L.outer_race(t);
+      const double bx = m.bearing_stiffness_N_per_m * (y(h + 0) - y(o + 0)) +
+                        m.bearing_damping_N_s_per_m * (y(h + 2) - y(o + 2));
+      const double by = m.bearing_stiffness_N_per_m * (y(h + 1) - y(o + 1)) +
+                        m.bearing_damping_N_s_per_m * (y(h + 3) - y(o + 3));
+      std::array<double, 2> ribbon{};
+      if (tdb.dahl.enabled) {
+        ribbon = {y(h + 4), y(h + 5)};
+        (*rate)(h + 4) = DahlForceRate(tdb.dahl, y(h + 4), y(o + 0), y(o + 2));
+        (*rate)(h + 5) = DahlForceRate(tdb.dahl, y(h + 5), y(o + 1), y(o + 3));
+      } else {
+        ribbon = {m.ribbon_stiffness_N_per_m * y(o + 0) + m.ribbon_damping_N_s_per_m * y(o + 2),
+                  m.ribbon_stiffness_N_per_m * y(o + 1) + m.ribbon_damping_N_s_per_m * y(o + 3)};
+      }
+      out->support_N[t] = ribbon;
+      (*rate)(h + 0) = y(h + 2);
+      (*rate)(h + 1) = y(h + 3);
+      (*rate)(h + 2) = (-c.fx_N - bx) / m.inner_race_mass_kg;
+      (*rate)(h + 3) = (-c.fy_N - by) / m.inner_race_mass_kg - r.gravity_m_s2;
+      (*rate)(o + 0) = y(o + 2);
+      (*rate)(o + 1) = y(o + 3);
+      (*rate)(o + 2) = (bx - ribbon[0]) / m.outer_race_mass_kg;
+      (*rate)(o + 3) = (by - ribbon[1]) / m.outer_race_mass_kg - r.gravity_m_s2;
+    } else if (tdb.dahl.enabled) {
       // The housing takes the contact's reaction, its weight and the ribbon (Jarroux 2019
       // Eq. (1)-(3)) per axis.
       const DahlRibbonRig& d = tdb.dahl;
@@ -205,12 +234,26 @@ double Plant::Energy(const PlantState& y) const {
   for (int t = 0; t < 2; ++t) {
     const TdbRig& tdb = r.tdbs[t];
     e += 0.5 * tdb.race_inertia_kg_m2 * y(L.race(t)) * y(L.race(t));
+    const int h = L.housing(t);
+    const bool mounted = tdb.four_dof.enabled;
     const auto p = AtStation(y, tdb.position_m);
-    const double dx = p[0] - tdb.misalignment_m[0];
-    const double dy = p[1] - tdb.misalignment_m[1];
+    const double dx = p[0] - tdb.misalignment_m[0] - (mounted ? y(h + 0) : 0.0);
+    const double dy = p[1] - tdb.misalignment_m[1] - (mounted ? y(h + 1) : 0.0);
     const double penetration = std::sqrt(dx * dx + dy * dy) - tdb.clearance_m;
-    if (penetration > 0.0 && tdb.contact_law == ContactLaw::kLinear) {
-      e += 0.5 * tdb.contact_stiffness * penetration * penetration;
+    if (penetration > 0.0) {
+      const double n = tdb.contact_law == ContactLaw::kLinear ? 1.0 : tdb.contact_exponent;
+      e += tdb.contact_stiffness * std::pow(penetration, n + 1.0) / (n + 1.0);
+    }
+    if (mounted) {
+      // The races' kinetic and gravity energy, the bearing's and the Kelvin-Voigt ribbon's.
+      const FourDofMountRig& m = tdb.four_dof;
+      const int o = L.outer_race(t);
+      const auto square = [](double a, double b) { return a * a + b * b; };
+      e += 0.5 * m.inner_race_mass_kg * square(y(h + 2), y(h + 3)) +
+           0.5 * m.outer_race_mass_kg * square(y(o + 2), y(o + 3)) +
+           r.gravity_m_s2 * (m.inner_race_mass_kg * y(h + 1) + m.outer_race_mass_kg * y(o + 1)) +
+           0.5 * m.bearing_stiffness_N_per_m * square(y(h + 0) - y(o + 0), y(h + 1) - y(o + 1)) +
+           0.5 * m.ribbon_stiffness_N_per_m * square(y(o + 0), y(o + 1));
     }
   }
   return e;

@@ -35,11 +35,14 @@ struct StateLayout {
   int race(int tdb) const { return 4 * n + 2 + tdb; }
   /// The low-passed displacement (m) of a sensor axis.
   int lag(int sensor, int axis) const { return 4 * n + 4 + 2 * sensor + axis; }
-  /// + 0..5: ux, uy, vx, vy, Dahl fx, Dahl fy of a TDB's housing.
-  int housing(int tdb) const { return 4 * n + 8 + 6 * tdb; }
+  /// + 0..5: ux, uy, vx, vy, Dahl fx, Dahl fy of a TDB's housing (with the 4-DOF mount: the
+  /// inner race's ux, uy, vx, vy, then the Dahl ribbon's forces under the outer race);
+  /// + 6..9: ux, uy, vx, vy of the 4-DOF mount's outer race.
+  int housing(int tdb) const { return 4 * n + 8 + 10 * tdb; }
+  int outer_race(int tdb) const { return housing(tdb) + 6; }
   /// The coil control current (A) an amplifier drives.
-  int coil(int amb, int axis) const { return 4 * n + 20 + 2 * amb + axis; }
-  int size() const { return 4 * n + 24; }
+  int coil(int amb, int axis) const { return 4 * n + 28 + 2 * amb + axis; }
+  int size() const { return 4 * n + 32; }
 };
 using PlantState = Eigen::VectorXd;
 
@@ -59,6 +62,9 @@ struct PlantOutputs {
   std::array<ContactForces, 2> tdb{};
   std::array<std::array<double, 2>, 2> amb_force_N{};
   std::array<std::array<double, 2>, 2> sensor_displacement_m{};  ///< true, before the lag
+  /// The force each TDB puts on its ground along +x, +y (N): the contact's reaction, or with
+  /// the 4-DOF mount the ribbon's, its races' weight included (a load cell reads it tared).
+  std::array<std::array<double, 2>, 2> support_N{};
 };
 
 class Plant {
@@ -79,7 +85,8 @@ class Plant {
   std::array<double, 2> VelocityAtStation(const PlantState& y, double z_m) const;
 
   /// Total mechanical energy (J): kinetic (rotor, races), the shaft's strain, gravity's
-  /// potential, the linear contacts' springs. Used by the energy test (no AMB, no Dahl).
+  /// potential, the contacts' springs (linear or Hunt-Crossley's k u^(n+1)/(n+1)), a 4-DOF
+  /// mount's races, bearing and Kelvin-Voigt ribbon. Used by the energy tests (no AMB, no Dahl).
   double Energy(const PlantState& y) const;
 
  private:

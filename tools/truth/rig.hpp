@@ -117,6 +117,20 @@ struct DahlRibbonRig {
   double hardening_rate_per_m = 0.0;  ///< b = d
 };
 
+/// A 4-DOF TDB's mount (Jarroux 2019 models #2/#3, Sec. 4.1, Fig. 9(b)): the inner race has a
+/// lateral mass and rides on the ball bearing (linear, kb and cb) on the outer race, which rides
+/// on the ribbon (Kelvin-Voigt, Eq. (4), or the Dahl ribbon when that is on) in a housing that it
+/// never reaches. Off: the races are fixed to the housing (the contact-law TDB).
+struct FourDofMountRig {
+  bool enabled = false;
+  double inner_race_mass_kg = 0.0;
+  double outer_race_mass_kg = 0.0;
+  double bearing_stiffness_N_per_m = 0.0;
+  double bearing_damping_N_s_per_m = 0.0;
+  double ribbon_stiffness_N_per_m = 0.0;
+  double ribbon_damping_N_s_per_m = 0.0;
+};
+
 struct TdbRig {
   std::string name;
   double position_m = 0.0;
@@ -133,7 +147,9 @@ struct TdbRig {
   double race_viscous_drag_N_m_s = 0.0;
   double race_drag_torque_N_m = 0.0;
   std::array<double, 2> misalignment_m{0.0, 0.0};  ///< TDB centre off the magnetic centre
+  /// With the 4-DOF mount the Dahl ribbon carries its outer race (housing_mass_kg unused).
   DahlRibbonRig dahl;
+  FourDofMountRig four_dof;
 };
 
 /// What the acquisition records and how: its rate and length, the trigger, and its noise.

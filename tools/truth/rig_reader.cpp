@@ -49,6 +49,18 @@ TdbRig ReadTdb(const JsonValue& t) {
   tdb.race_inertia_kg_m2 = race.Number("inertia_kg_m2");
   tdb.race_viscous_drag_N_m_s = race.Number("viscous_drag_N_m_s", 0.0);
   tdb.race_drag_torque_N_m = race.Number("drag_torque_N_m", 0.0);
+  if (const JsonValue* mount = t.Find("four_dof")) {
+    const JsonValue& m = *mount;
+    tdb.four_dof.enabled = true;
+    tdb.four_dof.inner_race_mass_kg = m.Number("inner_race_mass_kg");
+    tdb.four_dof.outer_race_mass_kg = m.Number("outer_race_mass_kg");
+    const JsonValue& bearing = m.At("bearing");
+    tdb.four_dof.bearing_stiffness_N_per_m = bearing.Number("stiffness_N_per_m");
+    tdb.four_dof.bearing_damping_N_s_per_m = bearing.Number("damping_N_s_per_m");
+    const JsonValue& ribbon = m.At("ribbon");
+    tdb.four_dof.ribbon_stiffness_N_per_m = ribbon.Number("stiffness_N_per_m");
+    tdb.four_dof.ribbon_damping_N_s_per_m = ribbon.Number("damping_N_s_per_m");
+  }
   return tdb;
 }
 
@@ -260,6 +272,13 @@ void CheckRig(const Rig& rig) {
     Positive(t.slip_regularisation_m_s, "tdb " + t.name + " slip_regularisation_m_s");
     Positive(t.race_inertia_kg_m2, "tdb " + t.name + " race inertia_kg_m2");
     if (t.dahl.enabled) Positive(t.dahl.housing_mass_kg, "tdb " + t.name + " housing mass");
+    if (t.four_dof.enabled) {
+      const FourDofMountRig& m = t.four_dof;
+      Positive(m.inner_race_mass_kg, "tdb " + t.name + " four_dof.inner_race_mass_kg");
+      Positive(m.outer_race_mass_kg, "tdb " + t.name + " four_dof.outer_race_mass_kg");
+      Positive(m.bearing_stiffness_N_per_m, "tdb " + t.name + " four_dof.bearing stiffness");
+      Positive(m.ribbon_stiffness_N_per_m, "tdb " + t.name + " four_dof.ribbon stiffness");
+    }
   }
   Positive(rig.controller.rate_Hz, "controller.rate_Hz");
   Positive(rig.acquisition.sample_rate_Hz, "acquisition.sample_rate_Hz");
