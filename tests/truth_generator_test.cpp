@@ -417,7 +417,10 @@ TEST(TruthGeneratorDeclaredOff, DrawsStayPhysical) {
   Rig rig = RigA();
   // A tight rig: air gaps 0.3 mm, so that 1.4 x the 0.25 mm clearance would pass 0.8 of them.
   for (AmbRig& a : rig.ambs) a.nominal_gap_m = 0.3e-3;
+  // One TDB's inner-race radius given apart from its journal's: the two are drawn as gaps.
+  rig.tdbs[0].inner_race_radius_m = rig.tdbs[0].journal_radius_m + 0.2e-3;
   const std::vector<DeclaredEntry> entries = DeclaredOffEntries(rig);
+  int gaps = 0;
   const auto stations = [](Rig* r) {
     std::vector<std::pair<double, std::string>> z;
     for (const AmbRig& a : r->ambs) z.emplace_back(a.position_m, "amb " + a.name);
@@ -458,6 +461,16 @@ TEST(TruthGeneratorDeclaredOff, DrawsStayPhysical) {
         case OffKind::kDelay:
           EXPECT_NEAR(d.value * rig.controller.rate_Hz, 2.0, 1e-9);
           break;
+        case OffKind::kGapTo: {
+          // The race's bore still surrounds the journal, the gap off by 15-40 %.
+          const double gap = r.tdbs[0].inner_race_radius_m - r.tdbs[0].journal_radius_m;
+          const double gap_ratio = gap / 0.2e-3;
+          EXPECT_TRUE((gap_ratio >= 0.6 - 1e-3 && gap_ratio <= 0.85 + 1e-3) ||
+                      (gap_ratio >= 1.15 - 1e-3 && gap_ratio <= 1.4 + 1e-3))
+              << gap_ratio;
+          ++gaps;
+          break;
+        }
         case OffKind::kFactor:
           if (e.name.ends_with("clearance_m")) {
             EXPECT_LE(d.value, 0.8 * 0.3e-3);
@@ -474,7 +487,8 @@ TEST(TruthGeneratorDeclaredOff, DrawsStayPhysical) {
       EXPECT_NO_THROW(CheckRig(r));
     }
   }
-  EXPECT_GT(clamped, 10);  // the bound did bind, on both TDBs' draws
+  EXPECT_GT(clamped, 10);    // the bound did bind, on both TDBs' draws
+  EXPECT_EQ(gaps, 2 * 150);  // the journal's and the race's radius of the first TDB
 }
 
 // A rig whose controller is marginal (kp 1.0; at 0.8 and below this rotor's loop is unstable):

@@ -256,8 +256,12 @@ std::vector<DeclaredEntry> DeclaredOffEntries(const Rig& rig) {
         r->tdbs[i].inner_race_radius_m = r->tdbs[i].journal_radius_m;
       };
     } else {
-      add(g + "inner_race_radius_m", K::kFactor, k + "inner_race_radius_m",
-          [i](Rig* r) { return &r->tdbs[i].inner_race_radius_m; });
+      // Given apart, the two radii keep their order: each is drawn as its gap to the other.
+      journal.kind = K::kGapTo;
+      journal.partner = [i](const Rig& r) { return r.tdbs[i].inner_race_radius_m; };
+      add(g + "inner_race_radius_m", K::kGapTo, k + "inner_race_radius_m", [i](Rig* r) {
+        return &r->tdbs[i].inner_race_radius_m;
+      }).partner = [i](const Rig& r) { return r.tdbs[i].journal_radius_m; };
     }
     add(g + "friction.coefficient", K::kFactor, k + "friction.coefficient",
         [i](Rig* r) { return &r->tdbs[i].friction_coefficient; });
@@ -327,6 +331,11 @@ DeclaredOffDraw DrawDeclaredOff(const Rig& declared, const std::vector<DeclaredE
     case OffKind::kDelay:
       d.value = d.declared + 1.0 / declared.controller.rate_Hz;
       break;
+    case OffKind::kGapTo: {
+      const double partner = e.partner(declared);
+      d.value = partner + (d.declared - partner) * (1.0 + sign * size);
+      break;
+    }
   }
   if (e.kind != OffKind::kDelay) d.value = Rounded(d.value);
   // What stays physical: a TDB clearance inside the AMBs' air gap, and the air gap outside it.

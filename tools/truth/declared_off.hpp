@@ -29,12 +29,16 @@ enum class OffKind {
   kOffset,   ///< declared 0: +-(5..30) um
   kStation,  ///< +-(0.15..0.4) of the distance to the nearest other station
   kDelay,    ///< one controller period more
+  /// A radius that sits a small gap from another (the inner race's from the journal's): the
+  /// gap x (1 +- 0.15..0.4), so that the race's bore still surrounds the journal.
+  kGapTo,
 };
 
 struct DeclaredEntry {
   std::string name;  ///< the generator's field path, as `--effect declared_off:NAME` takes it
   OffKind kind = OffKind::kFactor;
-  std::function<double*(Rig*)> field;  ///< the rig field it changes
+  std::function<double*(Rig*)> field;         ///< the rig field it changes
+  std::function<double(const Rig&)> partner;  ///< kGapTo: the other radius (m)
   /// What moves with it in the generator (may be empty): the inner-race radius, which the
   /// sheet does not give, stays the journal radius.
   std::function<void(Rig*)> follow;
