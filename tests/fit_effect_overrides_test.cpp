@@ -82,6 +82,38 @@ TEST(FitEffectOverrides, EveryLineIsReadBackExactlyOnEveryRig) {
   EXPECT_GT(effects, 100) << "the library offers too few effects over the rigs";
 }
 
+// A flux-decay candidate fits the law it names, whatever law the rig declares: the
+// exponential ones switch a declared ramp or hold-then-exponential to the exponential (a
+// declared hold of 1 ms once stayed under "exponential" and took its time constant to 2.7 ms
+// where the record's was 4.7), the hold candidate switches to the hold.
+TEST(FitEffectOverrides, EveryFluxDecayCandidateRunsTheLawItNames) {
+  int candidates = 0;
+  for (const std::string& rig : RigsAndTruthRigs()) {
+    SCOPED_TRACE(rig);
+    const ConfigVariants variants = testing::LoadTestVariants(rig);
+    for (const Effect& e : EffectLibrary(variants)) {
+      if (e.family != "amb_flux_decay") continue;
+      SCOPED_TRACE(e.name);
+      ++candidates;
+      const bool hold = e.name == "amb_flux_decay_hold";
+      const ModelParams p = variants.With(e.overrides(e.probe)).params;
+      int touched = 0;
+      for (const AmbParams& a : p.ambs) {
+        const bool named =
+            e.name.find(':') == std::string::npos || e.name.substr(e.name.find(':') + 1) == a.name;
+        if (!named) continue;
+        ++touched;
+        EXPECT_TRUE(a.flux_decay.enabled) << a.name;
+        EXPECT_EQ(a.flux_decay.current_law, hold ? PowerLossCurrentLaw::kHoldThenExponential
+                                                 : PowerLossCurrentLaw::kExponential)
+            << a.name;
+      }
+      EXPECT_GT(touched, 0);
+    }
+  }
+  EXPECT_GT(candidates, 12);
+}
+
 // At its probe, an effect moves some number the model reads; the declared config does not
 // already hold it (an effect that changes nothing could not be fitted).
 TEST(FitEffectOverrides, EveryEffectChangesTheModelAtItsProbe) {

@@ -261,9 +261,11 @@ Effect CoupleUnbalance(const ModelParams& declared) {
 // switches the law).
 Effect FluxDecayOf(const std::vector<const AmbParams*>& of, std::string name,
                    std::string description, double declared_tau_s = 0.0) {
-  std::vector<std::pair<std::string, bool>> ambs;  // name, law switched to exponential
+  // name, law switched to exponential (a declared ramp or hold-then-exponential: refitting
+  // only the time constant of a declared hold would be the hold candidate with its hold fixed)
+  std::vector<std::pair<std::string, bool>> ambs;
   for (const AmbParams* a : of) {
-    ambs.emplace_back(a->name, a->flux_decay.current_law == PowerLossCurrentLaw::kSlewLimitedRamp);
+    ambs.emplace_back(a->name, a->flux_decay.current_law != PowerLossCurrentLaw::kExponential);
   }
   Effect e;
   e.name = std::move(name);
@@ -325,8 +327,21 @@ Effect FluxDecayHold(const ModelParams& declared) {
   e.description =
       "AMB currents held after power loss, then fading as exp(-t/tau) (every AMB; "
       "current_law = hold_then_exponential)";
-  e.parameters = {{"hold_time_s", 0.0, 1e-2, {5e-4, 2e-3}},
-                  {"time_constant_s", 1e-4, 0.1, {2e-3, 8e-3}}};
+  std::vector<double> hold_starts = {5e-4, 2e-3};
+  std::vector<double> tau_starts = {2e-3, 8e-3};
+  // A declared hold is refitted from where it was declared too (issue 23: a declared law's
+  // numbers are suspects, starting from their declared values).
+  for (const AmbParams& a : declared.ambs) {
+    const FluxDecayParams& f = a.flux_decay;
+    if (f.enabled && f.current_law == PowerLossCurrentLaw::kHoldThenExponential &&
+        f.hold_time_s <= 1e-2 && f.time_constant_s >= 1e-4 && f.time_constant_s <= 0.1) {
+      hold_starts = Distinct({f.hold_time_s, 5e-4, 2e-3});
+      tau_starts = Distinct({f.time_constant_s, 2e-3, 8e-3});
+      break;
+    }
+  }
+  e.parameters = {{"hold_time_s", 0.0, 1e-2, hold_starts},
+                  {"time_constant_s", 1e-4, 0.1, tau_starts}};
   e.revealed_by = {Q::kDisplacement, Q::kCurrent, Q::kTdbNormalForce, Q::kTdbSupportForce};
   e.probe = {2e-3, 2e-2};
   e.overrides = [ambs](const std::vector<double>& v) {

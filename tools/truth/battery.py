@@ -8,6 +8,7 @@ exits 0 whatever the score; non-zero only when a fit or the generator fails or a
     battery.py AMBDROP AMBDROP_TRUTH RIG.json CONFIG.toml OUT
                [--declared [--count N]] [--jobs N] [--only NAME ...]
                [--record-file record.csv] [--markdown FILE] [--score-only] [--fit-arg ARG ...]
+               [--ceiling]
 
     AMBDROP, AMBDROP_TRUTH  the two binaries (build/ambdrop, build/tools/truth/ambdrop_truth)
     RIG.json, CONFIG.toml   the generator's rig and its translation into an ambdrop config
@@ -26,6 +27,11 @@ exits 0 whatever the score; non-zero only when a fit or the generator fails or a
     --markdown FILE         the table also as markdown
     --score-only            neither generate nor fit: score the fit.json files already in OUT
     --fit-arg ARG           passed on to `ambdrop fit` (repeat; e.g. --fit-arg=--threads=1)
+    --ceiling               also fit each record with its truth's own `--set` lines
+                            (OUT/fits/<record>/ceiling/): the residual the true numbers leave
+                            on the part the record's fit judged, so the cut the record can show
+                            at best (column "ceiling"); a second count takes only the records
+                            whose ceiling reaches the 3x cut, with the clean and outside ones
 
 Standard library only. See tools/truth/README.md ("Scoring battery") and docs/verification.md.
 """
@@ -479,14 +485,17 @@ def score(record, truth, fit, declared):
     return row
 
 
-def run_fit(args, record_dir, blind_dir, fit_dir):
-    """Runs `ambdrop fit` on one blind record; returns the seconds it took."""
+def run_fit(args, record_dir, blind_dir, fit_dir, sets=()):
+    """Runs `ambdrop fit` on one blind record (with `sets` as --set lines); returns the seconds
+    it took."""
     measured = blind_dir / args.record_file
     if not measured.is_file():
         raise BatteryError(f"{measured}: missing")
     fit_dir.mkdir(parents=True, exist_ok=True)
     cmd = [args.ambdrop, "fit", args.config, "--measured", str(measured), "--out",
            str(fit_dir)] + args.fit_arg
+    for s in sets:
+        cmd += ["--set", s]
     start = time.monotonic()
     with open(fit_dir / "fit.log", "w") as log:
         log.write(" ".join(cmd) + "\n")
@@ -502,10 +511,30 @@ def run_fit(args, record_dir, blind_dir, fit_dir):
 
 
 def fmt_cut(cut):
+    if cut is None:
+        return "-"
     return "inf" if math.isinf(cut) else f"{cut:.3g}x"
 
 
-COLUMNS = ["record", "truth", "verdict", "first chosen", "value vs truth", "cut", "s", ""]
+def above_noise(part, key):
+    return math.sqrt(max(0.0, part[key] ** 2 - part["noise_floor"] ** 2))
+
+
+def ceiling_cut(fit, ceiling):
+    """The cut the truth's own numbers reach on the part the record's fit judged: its residual
+    above the noise as declared over what the true numbers leave there."""
+    name = fit.get("judged_on", "")
+    part, best = fit.get(name), ceiling.get(name)
+    if part and best:
+        before, after = above_noise(part, "rms_before"), above_noise(best, "rms_before")
+    else:
+        before = fit["rms_before"]["overall_above_noise"]
+        after = ceiling["rms_before"]["overall_above_noise"]
+    return math.inf if after <= 0.0 else before / after
+
+
+COLUMNS = ["record", "truth", "verdict", "first chosen", "value vs truth", "cut", "ceiling", "s",
+           ""]
 
 
 def row_cells(r):
@@ -516,7 +545,7 @@ def row_cells(r):
         first += f" [eq: {r['equivalent']}]"
     value = r["value"] or "-"
     return [r["record"], r["truth"], r["verdict"], first, value, fmt_cut(r["cut"]),
-            f"{r['seconds']:.0f}", "HIT" if r["hit"] else "miss"]
+            fmt_cut(r.get("ceiling")), f"{r['seconds']:.0f}", "HIT" if r["hit"] else "miss"]
 
 
 def main():
@@ -535,6 +564,7 @@ def main():
     p.add_argument("--markdown")
     p.add_argument("--score-only", action="store_true")
     p.add_argument("--fit-arg", action="append", default=[])
+    p.add_argument("--ceiling", action="store_true")
     args = p.parse_args()
     for f in (args.rig, args.config):
         if not Path(f).is_file():
@@ -589,6 +619,19 @@ def main():
                 except BatteryError as e:
                     failures.append(str(e))
                     print(f"  FAILED {e}", flush=True)
+    if args.ceiling and not args.score_only:
+        for e in plan:
+            sets = json.loads((records / e["record"] / "truth.json").read_text()).get(
+                "ambdrop_set", [])
+            if not sets:
+                continue
+            try:
+                s = run_fit(args, records / e["record"], records / e["blind"],
+                            out / "fits" / e["record"] / "ceiling", sets)
+                print(f"  ceiling of {e['record']} in {s:.0f} s", flush=True)
+            except BatteryError as err:
+                failures.append(str(err))
+                print(f"  FAILED {err}", flush=True)
 
     rows = []
     for e in plan:
@@ -605,6 +648,11 @@ def main():
             s = out / "fits" / name / "seconds.txt"
             seconds[name] = float(s.read_text()) if s.is_file() else math.nan
         row["seconds"] = seconds[name]
+        ceiling_file = out / "fits" / name / "ceiling" / "fit.json"
+        row["ceiling"] = None
+        if ceiling_file.is_file():
+            row["ceiling"] = ceiling_cut(json.loads(fit_file.read_text()),
+                                         json.loads(ceiling_file.read_text()))
         rows.append(row)
 
     table = [row_cells(r) for r in rows]
@@ -614,6 +662,12 @@ def main():
     right = sum(r["hit"] for r in rows)
     invented = sum(r["invented"] for r in rows)
     total = f"{right} of {len(rows)} right, {invented} invented"
+    if any(r["ceiling"] is not None for r in rows):
+        # Records whose true numbers cannot cut the judged residual 3x cannot be right by the
+        # cut rule, whatever the fit does; clean and outside records have no ceiling and stay.
+        shown = [r for r in rows if r["ceiling"] is None or r["ceiling"] >= MIN_CUT]
+        total += (f"; of the {len(shown)} whose truth reaches a {MIN_CUT:g}x cut, "
+                  f"{sum(r['hit'] for r in shown)} right")
     print(total)
     for r in rows:
         if not r["hit"]:
