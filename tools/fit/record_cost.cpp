@@ -25,15 +25,22 @@ double EarlySeconds(const ModelParams& p) {
 }
 
 // Where the measured rotor has fallen through 90 % of its way to where it settles (about its
-// first contact), on the channels that travel a clear distance; +inf where none does.
-double NinetyPercentOfTheWay(const MeasurementParams& m, const MeasuredRecord& r,
-                             std::size_t trigger_row, double clearance_m) {
+// first contact), plus a few milliseconds of that impact; the free-fall estimate without
+// displacement channels. A force that fades after power loss slows the fall, so the record
+// is the better judge. Only the channels that fall: those whose way is at least half the
+// clearance. At a quarter, a horizontal axis settling 91 um aside (its TDB off-centre by a
+// third of the 300 um clearance) passed 90 % of its way while the rotor still fell, and the
+// start ended 5 ms after the trigger, before the other TDB's first contact: no key of that TDB
+// moved the start, and its friction could not be found.
+double EarlyEnd(const MeasurementParams& m, const MeasuredRecord& r, double trigger_s,
+                const ModelParams& declared) {
   const std::size_t rows = r.time_s.size();
-  const double settle_from =
-      r.time_s.back() - std::min((r.time_s.back() - r.time_s[trigger_row]) / 3.0, 0.1);
+  const std::size_t trigger_row = static_cast<std::size_t>(
+      std::lower_bound(r.time_s.begin(), r.time_s.end(), trigger_s) - r.time_s.begin());
+  const double settle_from = r.time_s.back() - std::min((r.time_s.back() - trigger_s) / 3.0, 0.1);
   double first = std::numeric_limits<double>::infinity();
   for (const MeasurementChannel& ch : m.channels) {
-    if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
+    if (ch.quantity != MeasuredQuantity::kDisplacement || trigger_row >= rows) continue;
     const std::vector<double>& v = r.values[r.Column(ch.column)];
     double settled = 0.0;
     int n = 0;
@@ -46,7 +53,7 @@ double NinetyPercentOfTheWay(const MeasurementParams& m, const MeasuredRecord& r
     if (n == 0) continue;
     settled /= n;
     const double way = settled - v[trigger_row];
-    if (std::abs(way) < 0.25 * clearance_m) continue;
+    if (std::abs(way) < 0.5 * declared.tdbs.front().clearance_m) continue;
     for (std::size_t j = trigger_row; j < rows; ++j) {
       if ((v[j] - v[trigger_row]) / way >= 0.9) {
         first = std::min(first, r.time_s[j]);
@@ -54,69 +61,6 @@ double NinetyPercentOfTheWay(const MeasurementParams& m, const MeasuredRecord& r
       }
     }
   }
-  return first;
-}
-
-// The first impact seen at the sensors: per sensor plane, the rotor's travel from where it was
-// at the trigger, |reading - reading at the trigger| over the axes the record has, grows while
-// it falls and first turns back at the impact. The impact is that travel's running maximum
-// once the travel has fallen back from it by a twentieth of the clearance (far above a
-// reading's noise), after reaching a quarter of it; the earliest plane's. +inf where no plane
-// turns back (a rotor that lands and stays).
-double FirstTurnBack(const MeasurementParams& m, const MeasuredRecord& r, std::size_t trigger_row,
-                     double clearance_m) {
-  const std::size_t rows = r.time_s.size();
-  std::vector<std::vector<const std::vector<double>*>> planes;
-  std::vector<int> plane_of;
-  for (const MeasurementChannel& ch : m.channels) {
-    if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
-    const auto at = std::find(plane_of.begin(), plane_of.end(), ch.index);
-    if (at == plane_of.end()) {
-      plane_of.push_back(ch.index);
-      planes.push_back({});
-    }
-    planes[static_cast<std::size_t>(std::find(plane_of.begin(), plane_of.end(), ch.index) -
-                                    plane_of.begin())]
-        .push_back(&r.values[r.Column(ch.column)]);
-  }
-  double first = std::numeric_limits<double>::infinity();
-  for (const auto& axes : planes) {
-    double peak = 0.0;
-    double peak_s = 0.0;
-    for (std::size_t j = trigger_row; j < rows; ++j) {
-      double travel_sq = 0.0;
-      for (const std::vector<double>* v : axes) {
-        const double d = (*v)[j] - (*v)[trigger_row];
-        travel_sq += d * d;
-      }
-      const double travel = std::sqrt(travel_sq);
-      if (travel > peak) {
-        peak = travel;
-        peak_s = r.time_s[j];
-      } else if (peak >= 0.25 * clearance_m && travel < peak - 0.05 * clearance_m) {
-        first = std::min(first, peak_s);
-        break;
-      }
-    }
-  }
-  return first;
-}
-
-// The end of the drop's start: the first impact plus a few milliseconds of it; the free-fall
-// estimate without displacement channels. A force that fades after power loss slows the fall,
-// so the record is the better judge. The first impact is where a plane's travel first turns
-// back; only where none does, where a travelling channel passed 90 % of its way to where it
-// settles. That rule alone once ended the start 5 ms before any contact: a horizontal axis
-// settling 90 um aside (its TDB off-centre) passed 90 % of its way while the rotor still fell.
-double EarlyEnd(const MeasurementParams& m, const MeasuredRecord& r, double trigger_s,
-                const ModelParams& declared) {
-  const std::size_t rows = r.time_s.size();
-  const std::size_t trigger_row = static_cast<std::size_t>(
-      std::lower_bound(r.time_s.begin(), r.time_s.end(), trigger_s) - r.time_s.begin());
-  if (trigger_row >= rows) return trigger_s + EarlySeconds(declared);
-  const double clearance = declared.tdbs.front().clearance_m;
-  double first = FirstTurnBack(m, r, trigger_row, clearance);
-  if (!std::isfinite(first)) first = NinetyPercentOfTheWay(m, r, trigger_row, clearance);
   if (!std::isfinite(first)) return trigger_s + EarlySeconds(declared);
   return first + 5e-3;
 }
