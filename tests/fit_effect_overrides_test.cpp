@@ -152,6 +152,29 @@ TEST(FitEffectOverrides, VariantsWithoutOverridesAreTheDeclaredConfig) {
   EXPECT_EQ(variants.declared().params.tdbs.front().clearance_m, 2.1e-4);
 }
 
+// The user's own --set lines stay theirs in every variant: a power-loss law switched by --set
+// leaves the file's numbers of the law it replaced unused in each candidate's config too, and
+// a file key keeps its file:line. toml++ copies a node without its source, so a copied tree
+// once made the switch look like the file's and every variant refused the file's hold time
+// (`ambdrop fit` with the truth's own --set lines exited 2).
+TEST(FitEffectOverrides, VariantsKeepTheUsersOverridesAsOverrides) {
+  const std::string rig = "../tests/truth/rigid_fourdof_c.toml";  // it declares a hold
+  const ConfigVariants variants =
+      testing::LoadTestVariants(rig, {"amb.de.flux_decay.current_law=\"exponential\"",
+                                      "amb.de.flux_decay.time_constant_s=4.7e-3"});
+  LoadedConfig applied;
+  ASSERT_NO_THROW(applied = variants.With({"tdb.de.clearance_m=3.2e-4"}));
+  EXPECT_EQ(applied.params.ambs.size(), 2u);
+  for (const AmbParams& a : applied.params.ambs) {
+    EXPECT_EQ(a.flux_decay.current_law, a.name == "de" ? PowerLossCurrentLaw::kExponential
+                                                       : PowerLossCurrentLaw::kHoldThenExponential);
+  }
+  const ConfigKey* clearance = FindKey(applied.keys, "tdb.nde.clearance_m");
+  ASSERT_NE(clearance, nullptr);
+  EXPECT_NE(clearance->location.find("rigid_fourdof_c.toml:"), std::string::npos)
+      << clearance->location;
+}
+
 TEST(FitEffectOverrides, NumbersAreWrittenToReadBackExactly) {
   for (const double v : {0.1, 1.0, -0.0, 1e-5, 2.0 / 3.0, 1e20, -123456789.125, 5e-324}) {
     const std::string text = OverrideNumber(v);

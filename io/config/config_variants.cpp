@@ -16,6 +16,7 @@ struct ConfigVariants::Tree {
   toml::table root;
   std::string text;
   std::string source_name;
+  std::vector<std::string> overrides;  ///< the user's own
 };
 
 ConfigVariants::ConfigVariants(std::unique_ptr<Tree> tree, LoadedConfig declared)
@@ -39,13 +40,18 @@ ConfigVariants ConfigVariants::FromString(const std::string& text, const std::st
   tree->root = config_detail::ConfigTree(text, source_name, overrides);
   tree->text = text;
   tree->source_name = source_name;
+  tree->overrides = overrides;
   LoadedConfig declared = config_detail::ReadLoadedConfig(tree->root, text, source_name);
   return ConfigVariants(std::move(tree), std::move(declared));
 }
 
 LoadedConfig ConfigVariants::With(const std::vector<std::string>& overrides) const {
   if (overrides.empty()) return declared_;
-  toml::table root = tree_->root;
+  // Parsed again rather than copied: toml++ copies a node without its source, and the readers
+  // need it (which key came from --set, and where each stands in the file for the messages).
+  // With a copy, the user's own `--set ...current_law=...` looked like the file's, and every
+  // variant refused the file's numbers of the law it replaced.
+  toml::table root = config_detail::ConfigTree(tree_->text, tree_->source_name, tree_->overrides);
   for (const std::string& o : overrides) config_detail::ApplyOverride(root, o);
   return config_detail::ReadLoadedConfig(root, tree_->text, tree_->source_name);
 }
