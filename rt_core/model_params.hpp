@@ -31,7 +31,7 @@ struct SensorRunoutParams {
 /// Transport delay and first-order low-pass of the sensor electronics.
 struct SensorLagParams {
   bool enabled = false;
-  double delay_s = 0.0;    ///< rounded to whole controller samples
+  double delay_s = 0.0;    ///< between controller samples: read between them, linearly
   double cutoff_Hz = 0.0;  ///< 0: no filter
 };
 

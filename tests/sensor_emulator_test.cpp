@@ -87,6 +87,22 @@ TEST(SensorEmulator, DelayIsWholeSamples) {
   }
 }
 
+// A delay that is not a whole number of samples reads between the samples: on a ramp, linear
+// interpolation is exact, so the reading is the ramp 2.4 samples late; a constant passes as is.
+TEST(SensorEmulator, DelayBetweenSamplesReadsBetweenThem) {
+  SensorParams p;
+  p.lag = {true, 2.4 * 5e-5, 0.0};
+  SensorEmulator s({p}, 5e-5);
+  SensorReadings r;
+  s.Sample(At(1e-6, 2e-6), &r);
+  EXPECT_DOUBLE_EQ(r.reading_m[0][1], 2e-6);
+  for (int k = 1; k < 12; ++k) {
+    s.Sample(At((1 + k) * 1e-6, 2e-6), &r);
+    EXPECT_NEAR(r.reading_m[0][0], (1 + std::max(0.0, k - 2.4)) * 1e-6, 1e-18) << "sample " << k;
+    EXPECT_DOUBLE_EQ(r.reading_m[0][1], 2e-6);
+  }
+}
+
 TEST(SensorEmulator, LowPassStepResponse) {
   SensorParams p;
   p.lag = {true, 0.0, 500.0};

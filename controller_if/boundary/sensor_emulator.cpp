@@ -14,14 +14,17 @@ SensorEmulator::SensorEmulator(const std::vector<SensorParams>& sensors, double 
     const SensorParams& p = sensors[i];
     // In samples as a double first: llround is undefined beyond int64, int beyond 2^31.
     const double samples = p.lag.enabled ? p.lag.delay_s / period_s : 0.0;
-    if (!(samples >= 0.0 && samples < kMaxSensorDelaySamples - 0.5)) {
+    if (!(samples >= 0.0 && samples <= kMaxSensorDelaySamples - 2)) {
       char text[256];
       std::snprintf(text, sizeof text,
                     "sensor.%s.lag.delay_s = %.6g s is %.6g samples of %.6g s, at most %d",
-                    p.name.c_str(), p.lag.delay_s, samples, period_s, kMaxSensorDelaySamples - 1);
+                    p.name.c_str(), p.lag.delay_s, samples, period_s, kMaxSensorDelaySamples - 2);
       throw std::invalid_argument(text);
     }
-    const int delay = static_cast<int>(std::llround(samples));
+    // A delay between samples reads between them (linear interpolation): a chain's delay is a
+    // time, not a count of this controller's samples (69 us at 8 kHz once became 125 us).
+    const int delay = static_cast<int>(std::floor(samples));
+    const double fraction = samples - delay;
     // Backward-Euler first-order low-pass: y += a (x - y), a = dt / (dt + 1/(2 pi fc)).
     filter_alpha_[i] = 1.0;
     if (p.lag.enabled && p.lag.cutoff_Hz > 0.0) {
@@ -31,6 +34,7 @@ SensorEmulator::SensorEmulator(const std::vector<SensorParams>& sensors, double 
     for (int axis = 0; axis < 2; ++axis) {
       Channel& c = channels_[i][axis];
       c.delay_samples = delay;
+      c.delay_fraction = fraction;
       // One independent stream per sensor axis from the sensor's seed.
       c.noise = PortableRandom(p.noise.seed * 2 + static_cast<std::uint64_t>(axis));
     }
@@ -55,13 +59,16 @@ void SensorEmulator::Sample(const Observation& obs, SensorReadings* out) noexcep
       double v =
           p.AxisGain(axis) * (obs.sensor_xy_m[i][axis] + runout[axis]) + p.AxisOffset_m(axis);
       // Transport delay.
-      if (c.delay_samples > 0) {
+      if (c.delay_samples > 0 || c.delay_fraction > 0.0) {
         if (!c.primed) c.delay_line.fill(v);
         c.delay_line[c.head] = v;
         const int tail =
             (c.head - c.delay_samples + kMaxSensorDelaySamples) % kMaxSensorDelaySamples;
+        const int before = (tail - 1 + kMaxSensorDelaySamples) % kMaxSensorDelaySamples;
         c.head = (c.head + 1) % kMaxSensorDelaySamples;
-        v = c.delay_line[tail];
+        v = c.delay_fraction > 0.0 ? (1.0 - c.delay_fraction) * c.delay_line[tail] +
+                                         c.delay_fraction * c.delay_line[before]
+                                   : c.delay_line[tail];
       }
       // Electronics low-pass.
       if (!c.primed) c.filtered = v;

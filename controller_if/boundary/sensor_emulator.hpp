@@ -28,7 +28,8 @@ class SensorEmulator {
  private:
   struct Channel {
     std::array<double, kMaxSensorDelaySamples> delay_line{};
-    int delay_samples = 0;
+    int delay_samples = 0;        ///< whole samples of the delay
+    double delay_fraction = 0.0;  ///< and its fraction of one more, in [0, 1)
     int head = 0;
     double filtered = 0.0;
     bool primed = false;

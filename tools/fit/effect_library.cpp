@@ -434,16 +434,17 @@ Effect SensorLagOf(const std::vector<const SensorParams*>& sensors, double sampl
   e.family = "sensor_lag";
   e.description = std::move(description);
   // The filter as its time constant: 0 is no filter, and the cost is smooth through it.
-  // The delay is whole samples of the sensor (controller_if/boundary/sensor_emulator.cpp), at most
-  // what its ring holds: a rig without a controller samples at every step.
-  const double longest = std::min(1e-3, (kMaxSensorDelaySamples - 1) * sample_s);
+  // The delay reads between the sensor's samples (controller_if/boundary/sensor_emulator.cpp), so
+  // the cost is smooth in it; at most what its ring holds: a rig without a controller samples at
+  // every step.
+  const double longest = std::min(1e-3, (kMaxSensorDelaySamples - 2) * sample_s);
   // A declared lag is refitted from its declared delay and filter.
   const double d0 = s.lag.enabled ? std::min(s.lag.delay_s, longest) : 0.0;
   const double tau0 = s.lag.enabled && s.lag.cutoff_Hz > 0.0
                           ? std::min(1.0 / (2 * kPi * s.lag.cutoff_Hz), 1e-3)
                           : 0.0;
   e.parameters = {
-      {"delay_s", 0.0, longest, Distinct({d0, 0.0, 2 * sample_s, 5 * sample_s}), false, sample_s},
+      {"delay_s", 0.0, longest, Distinct({d0, 0.0, 2 * sample_s, 5 * sample_s})},
       {"filter_time_constant_s", 0.0, 1e-3,
        s.lag.enabled ? Distinct({tau0, 0.0, 2e-4}) : std::vector<double>{0.0, 2e-4, 0.0}}};
   if (s.lag.enabled) {
@@ -452,7 +453,7 @@ Effect SensorLagOf(const std::vector<const SensorParams*>& sensors, double sampl
   // The controller acts on the readings: its command shows them too.
   e.revealed_by = {Q::kDisplacement, Q::kControllerCommand};
   // At the delay's bound: a lag shows only weakly in a drop.
-  e.probe = {std::floor(longest / sample_s) * sample_s, 5e-4};
+  e.probe = {longest, 5e-4};
   // The filter's time constant becomes its cutoff; below 0.1 us it is no filter (0 Hz).
   std::vector<std::string> tables;
   for (const SensorParams* p : sensors) tables.push_back("sensor." + p->name + ".lag.");

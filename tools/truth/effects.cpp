@@ -229,18 +229,17 @@ Truth ApplyEffect(const std::string& kind, std::uint64_t seed, Rig* rig) {
         q.lag_time_constant_s, q.lag_delay_s);
     t.generator_parameters = {{"acquisition.lag_time_constant_s", q.lag_time_constant_s},
                               {"acquisition.lag_delay_s", q.lag_delay_s}};
-    const double period = 1.0 / rig->controller.rate_Hz;
-    const double whole = std::round(q.lag_delay_s / period) * period;
     for (const SensorRig& s : rig->sensors) {
       const std::string p = "sensor." + s.name + ".lag.";
       t.ambdrop_keys.emplace_back(p + "enabled", "true");
-      t.ambdrop_keys.emplace_back(p + "delay_s", Num(whole));
+      t.ambdrop_keys.emplace_back(p + "delay_s", Num(q.lag_delay_s));
       t.ambdrop_keys.emplace_back(p + "cutoff_Hz", Num(1.0 / (2.0 * kPi * q.lag_time_constant_s)));
     }
     t.mapping = "approximate";
     t.mapping_note =
-        "ambdrop's lag is per sensor (the same numbers set on each) and delays in whole "
-        "controller samples; the generator's delay is continuous, rounded here";
+        "ambdrop's lag is per sensor (the same numbers set on each) and acts on the "
+        "controller's samples (a delay between two read between them, the low-pass by "
+        "backward Euler); the generator's acts on the continuous signal";
   } else if (kind == "dahl_ribbon") {
     TdbRig& tdb = rig->tdbs[TdbIndex(*rig, &d)];
     DahlRibbonRig& r = tdb.dahl;
