@@ -13,7 +13,8 @@
 #     declared hold-then-fall power loss): its clean record, an exponential power loss where
 #     the hold is declared (the law switched, its time constant within 20 % of the change) and
 #     an offset NDE TDB with the DE TDB's friction high (the friction shows on the speeds only:
-#     the pair is named, both values within 20 %).
+#     the pair is named, both values within 20 %; not the 3x cut, which this record's truth
+#     itself does not reach: its own --set lines cut the start 2.85x, `battery.py --ceiling`).
 # Every record is fitted before the script fails, so one run shows every outcome.
 # Usage: truth_fit_subset.sh AMBDROP_BINARY SOURCE_DIR [AMBDROP_TRUTH_BINARY]
 #   (the truth binary defaults to tools/truth/ambdrop_truth beside the ambdrop binary's build
@@ -57,6 +58,8 @@ expect = {
     "clean": "no_effect_needed",
     "side_pull": "unexplained",
 }
+# Records whose truth cannot reach the 3x cut (see the header): named and valued only.
+cut_beyond_the_record = {("rigid_fourdof_c", "misalignment_friction")}
 declared = {}
 failed = []
 for case in sys.argv[4:]:
@@ -73,7 +76,11 @@ for case in sys.argv[4:]:
     if verdict is not None and fit["chosen"]:
         problems.append("chose " + row["chosen"] + " (expected nothing)")
     if not row["hit"]:
-        problems.append("scoring: " + (row["note"] or "miss"))
+        rules = [n for n in (row["note"] or "miss").split("; ") if n]
+        if (rig, effect) in cut_beyond_the_record:
+            rules = [n for n in rules if not n.startswith("cut ")]
+        if rules:
+            problems.append("scoring: " + "; ".join(rules))
     cut = "inf" if row["cut"] == float("inf") else f"{row['cut']:.2g}x"
     print(f"{rig:<15} {effect:<21} {fit['verdict']:<17} on {fit.get('judged_on', '?'):<6} "
           f"chosen {row['chosen']:<28} "
