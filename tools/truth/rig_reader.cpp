@@ -1,6 +1,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 #include "json_reader.hpp"
 #include "rig.hpp"
@@ -278,6 +279,14 @@ void CheckRig(const Rig& rig) {
       Positive(m.outer_race_mass_kg, "tdb " + t.name + " four_dof.outer_race_mass_kg");
       Positive(m.bearing_stiffness_N_per_m, "tdb " + t.name + " four_dof.bearing stiffness");
       Positive(m.ribbon_stiffness_N_per_m, "tdb " + t.name + " four_dof.ribbon stiffness");
+      for (const auto& [damping, what] :
+           {std::pair{m.bearing_damping_N_s_per_m, " four_dof.bearing damping"},
+            std::pair{m.ribbon_damping_N_s_per_m, " four_dof.ribbon damping"}}) {
+        if (!(damping >= 0.0) || !std::isfinite(damping)) {
+          throw std::runtime_error("tdb " + t.name + what + ": expected a number >= 0, found " +
+                                   std::to_string(damping));
+        }
+      }
     }
   }
   Positive(rig.controller.rate_Hz, "controller.rate_Hz");
