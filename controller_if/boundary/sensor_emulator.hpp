@@ -32,12 +32,19 @@ class SensorEmulator {
     double delay_fraction = 0.0;  ///< and its fraction of one more, in [0, 1)
     int head = 0;
     double filtered = 0.0;
+    double last_input = 0.0;  ///< the low-pass's input one sample ago
     bool primed = false;
     PortableRandom noise;
   };
   std::vector<SensorParams> params_;
   std::vector<std::array<Channel, 2>> channels_;
-  double filter_alpha_[kMaxSensors]{};  ///< per sensor, first-order low-pass coefficient
+  /// A sensor's first-order low-pass, y_k = e y_(k-1) + b0 x_k + b1 x_(k-1) (off: 0, 1, 0).
+  struct Filter {
+    double e = 0.0;
+    double b0 = 1.0;
+    double b1 = 0.0;
+  };
+  std::array<Filter, kMaxSensors> filter_{};
 };
 
 }  // namespace ambdrop

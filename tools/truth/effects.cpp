@@ -238,8 +238,8 @@ Truth ApplyEffect(const std::string& kind, std::uint64_t seed, Rig* rig) {
     t.mapping = "approximate";
     t.mapping_note =
         "ambdrop's lag is per sensor (the same numbers set on each) and acts on the "
-        "controller's samples (a delay between two read between them, the low-pass by "
-        "backward Euler); the generator's acts on the continuous signal";
+        "controller's samples (a delay between two read between them, the low-pass exact for "
+        "a signal linear between them); the generator's acts on the continuous signal";
   } else if (kind == "dahl_ribbon") {
     TdbRig& tdb = rig->tdbs[TdbIndex(*rig, &d)];
     DahlRibbonRig& r = tdb.dahl;
