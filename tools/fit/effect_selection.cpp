@@ -250,14 +250,14 @@ Selection::Part JudgePart(const ConfigVariants& declared, const RecordCost& cost
 // (rms_before, noise and model floors, limit); `search` is where starts are searched first.
 // `harm`, if given, says why a fitted pair makes a part of the record not judged here depart
 // further than the best single effect alone does ("" if it does not); `refuted`, why a single
-// effect makes such a part depart further than the declared model does; `short_elsewhere`, why
-// the chosen effects explain too little of a part not judged here that departed as declared.
+// effect makes such a part depart further than the declared model does; `against_the_rest`, why
+// the rest of the record says the chosen effects are no partial explanation ("" if it does not).
 Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const RecordCost* search,
                    const Eigen::VectorXd& residual_before, const std::vector<Effect>& library,
                    Selection s, bool at_floor, const SelectionRules& rules,
                    const std::function<std::string(const EffectFit&, const EffectFit&)>& harm,
                    const std::function<std::string(const EffectFit&)>& refuted,
-                   const std::function<std::string(const EffectFit&)>& short_elsewhere) {
+                   const std::function<std::string(const EffectFit&)>& against_the_rest) {
   const double sse_before = residual_before.squaredNorm();
   s.bic_before = Bic(sse_before, cost.size(), 0);
   s.rms_after = s.rms_before;
@@ -623,25 +623,20 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
         fmt::format("less than two thirds of the way to the limit, so most of the "
                     "error is something else{}",
                     alike));
-  } else if (const std::string why = refuted ? refuted(s.chosen_fit) : std::string();
-             !why.empty()) {
-    // Nor is a partial explanation that the rest of the record refutes: short of the limit on
-    // the part it was fitted on, and beyond both its limit and the declared model's residual
-    // on another part. On the 4-DOF rig a constant side pull (outside the library) was taken
-    // 82 % of the way on the drop's start by the magnets' fading law (0.065 to 0.024, limit
-    // 0.015), which took the speeds from 0.061 to 0.085 (allowed 0.061): `partly_explained`
-    // named a law the record contradicts. A right effect falls within its limit on the part it
-    // was fitted on, where this rule does not look.
-    not_described(fmt::format("short of the limit, and the record refutes it: {}", why));
   } else if (const std::string why =
-                 short_elsewhere ? short_elsewhere(s.chosen_fit) : std::string();
+                 against_the_rest ? against_the_rest(s.chosen_fit) : std::string();
              !why.empty()) {
-    // Most of the error is the error on every part, not only the judged one: an effect short
-    // of the limit on its own part must close two thirds of the way on every other part that
-    // departed too. On the flexible rig a side pull (outside the library) was taken 96 % of the
-    // way on the drop's start by a lower magnet bias (0.14 to 0.043, limit 0.039), which took
-    // the speeds only from 0.048 to 0.037 against a limit of 0.0085 (28 % of the way).
-    not_described(fmt::format("short of the limit, and it explains too little elsewhere: {}", why));
+    // Nor is a partial explanation that the rest of the record contradicts: short of the limit
+    // on the part it was fitted on, and either beyond both its limit and the declared model's
+    // residual on another part, or less than two thirds of the way on another part that
+    // departed too (most of the error is the error on every part). On the 4-DOF rig a constant
+    // side pull (outside the library) was taken 82 % of the way on the drop's start by the
+    // magnets' fading law (0.065 to 0.024, limit 0.015), which took the speeds from 0.061 to
+    // 0.085 (allowed 0.061); on the flexible rig a lower magnet bias took it 96 % of the way
+    // on the start (0.14 to 0.043, limit 0.039) and the speeds only from 0.048 to 0.037 against
+    // 0.0085 (28 %). A right effect falls within its limit on the part it was fitted on, where
+    // this rule does not look.
+    not_described("short of the limit, and " + why);
   } else {
     s.verdict = "partly_explained";
     s.reason = fmt::format(
@@ -952,20 +947,24 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   };
   // A single effect refuted by a part not judged: it takes that part beyond both its limit and
   // what the declared model leaves there, by more than the part's own model floor allows.
+  const auto declared_there = [](const PartOf& p) { return p.part->rms_before; };
+  const auto say_refuted = [](const PartOf& p, double before, double after, double allowed) {
+    return fmt::format("it takes the residual {} from {:.3g} to {:.3g} (allowed {:.3g})", p.phrase,
+                       before, after, allowed);
+  };
   const auto refuted = [&](const EffectFit& f) -> std::string {
     if (others.empty()) return {};
-    return departs(
-        fitted_run(f), [](const PartOf& p) { return p.part->rms_before; },
-        [](const PartOf& p, double before, double after, double allowed) {
-          return fmt::format("it takes the residual {} from {:.3g} to {:.3g} (allowed {:.3g})",
-                             p.phrase, before, after, allowed);
-        });
+    return departs(fitted_run(f), declared_there, say_refuted);
   };
-  // A part not judged that departed as declared (beyond its limit, widened by twice its model
-  // floor as above) and that the chosen effects close less than two thirds of the way.
-  const auto short_elsewhere = [&](const EffectFit& f) -> std::string {
+  // Why a partial explanation is none, from one run of it: the record refutes it (as above), or
+  // a part not judged that departed as declared (beyond its limit, widened by twice its model
+  // floor as above) is closed less than two thirds of the way.
+  const auto against_the_rest = [&](const EffectFit& f) -> std::string {
     if (others.empty()) return {};
     const SimulatedRecord sim = fitted_run(f);
+    if (std::string why = departs(sim, declared_there, say_refuted); !why.empty()) {
+      return "the record refutes it: " + why;
+    }
     for (const PartOf& p : others) {
       const double floor = std::max(p.part->step_sensitivity, p.part->start_sensitivity);
       const double allowed = std::hypot(p.part->limit, rules.model_floor_factor * floor);
@@ -974,8 +973,8 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
       const double after = OverallRms(*p.cost, p.cost->Residual(sim).squaredNorm());
       if ((after - allowed) * rules.explained_cut > before - allowed) {
         return fmt::format(
-            "{} it takes the residual only from {:.3g} to {:.3g} (limit {:.3g}), less than two "
-            "thirds of the way",
+            "it explains too little elsewhere: {} it takes the residual only from {:.3g} to "
+            "{:.3g} (limit {:.3g}), less than two thirds of the way",
             p.phrase, before, after, allowed);
       }
     }
@@ -983,7 +982,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   };
   s = SelectOn(declared, judged, on == "whole" && early_cost ? &*early_cost : nullptr,
                judged_before, library, std::move(s), at_floor, rules, harm, refuted,
-               short_elsewhere);
+               against_the_rest);
   s.whole = whole;
   s.early = early;
   s.speeds = speeds;
