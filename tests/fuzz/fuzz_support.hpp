@@ -5,18 +5,26 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <string>
 
 namespace ambdrop::fuzz {
 
+/// The scratch file, removed when the fuzzer exits (each smoke run left one per target in
+/// /tmp). A crash leaves it: libFuzzer writes the crashing input elsewhere anyway.
+struct ScratchFile {
+  std::string path;
+  ~ScratchFile() { std::remove(path.c_str()); }
+};
+
 /// The input's bytes in a file of this process (overwritten by each input); returns its path.
 inline std::string InputFile(const std::uint8_t* data, std::size_t size, const char* suffix) {
-  static const std::string path =
-      "/tmp/ambdrop_fuzz_" + std::to_string(::getpid()) + "_input" + suffix;
-  std::ofstream(path, std::ios::binary | std::ios::trunc)
+  static const ScratchFile file{"/tmp/ambdrop_fuzz_" + std::to_string(::getpid()) + "_input" +
+                                suffix};
+  std::ofstream(file.path, std::ios::binary | std::ios::trunc)
       .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-  return path;
+  return file.path;
 }
 
 /// A config of the source tree (configs/NAME).

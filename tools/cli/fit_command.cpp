@@ -486,7 +486,8 @@ RegisteredCommand AddFitCommand(CLI::App& app) {
       ->capture_default_str();
   fit_command->add_flag("--declared-step", options->declared_step,
                         "Run every model at the config's step (default: up to 4x coarser "
-                        "where that moves the prediction by under 0.2 of the record's noise)");
+                        "where that widens no agreement limit by over 5 %: a move under 0.2 of "
+                        "the record's noise, or within the model's sensitivity to its start)");
   fit_command->add_flag("--quiet,-q", options->quiet, "No summary on stdout");
   return {fit_command, [options] { return RunFitCommand(*options); }};
 }

@@ -42,15 +42,47 @@ constexpr std::size_t kSearchedStarts = 3;
 // ~1 % of the range: contact makes the cost rough at finer scales.
 constexpr double kStep = 0.02;
 
+// The residuals one fit has already run, by search point: the runs are deterministic, and
+// Levenberg-Marquardt asks again for points it has (each Jacobian starts with the residual at
+// the point its last accepted step computed; each search, with its start, which the ranking of
+// starts ran; the uncertainty's Jacobian, with the optimum). A third of a one-parameter
+// search's runs were such repeats.
+class RunMemo {
+ public:
+  const Eigen::VectorXd* Find(const RecordCost* cost, const Eigen::VectorXd& z) const {
+    for (const Entry& e : entries_) {
+      if (e.cost == cost && e.z.size() == z.size() && (e.z.array() == z.array()).all()) {
+        return &e.residual;
+      }
+    }
+    return nullptr;
+  }
+  void Add(const RecordCost* cost, const Eigen::VectorXd& z, const Eigen::VectorXd& residual) {
+    if (entries_.size() >= kEntries) entries_.erase(entries_.begin());
+    entries_.push_back({cost, z, residual});
+  }
+
+ private:
+  // A search revisits only its latest points; the starts are few.
+  static constexpr std::size_t kEntries = 12;
+  struct Entry {
+    const RecordCost* cost;
+    Eigen::VectorXd z;
+    Eigen::VectorXd residual;
+  };
+  std::vector<Entry> entries_;
+};
+
 struct Problem : Eigen::DenseFunctor<double> {
   Problem(const ConfigVariants& d, const RecordCost& c, const std::vector<const Effect*>& e,
-          const std::vector<Flat>& f, int budget)
+          const std::vector<Flat>& f, int budget, RunMemo* m)
       : DenseFunctor<double>(static_cast<int>(f.size()), static_cast<int>(c.size())),
         declared(d),
         cost(c),
         effects(e),
         flat(f),
-        runs_left(budget) {}
+        runs_left(budget),
+        memo(m) {}
 
   std::vector<std::vector<double>> Values(const Eigen::VectorXd& z) const {
     std::vector<std::vector<double>> v(effects.size());
@@ -60,10 +92,15 @@ struct Problem : Eigen::DenseFunctor<double> {
     }
     return v;
   }
+  // The budget counts every residual asked for, repeated or not, so that a search takes the
+  // same path as it would without the memo; `runs` counts the model runs made.
   Eigen::VectorXd Run(const Eigen::VectorXd& z) {
-    ++runs;
     --runs_left;
-    return ResidualWithEffects(declared, cost, effects, Values(z));
+    if (const Eigen::VectorXd* known = memo->Find(&cost, z)) return *known;
+    ++runs;
+    Eigen::VectorXd r = ResidualWithEffects(declared, cost, effects, Values(z));
+    memo->Add(&cost, z, r);
+    return r;
   }
   int operator()(const Eigen::VectorXd& z, Eigen::VectorXd& fvec) {
     if (runs_left <= 0) return -1;  // out of budget: LM stops and keeps the best so far
@@ -91,6 +128,7 @@ struct Problem : Eigen::DenseFunctor<double> {
   const std::vector<const Effect*>& effects;
   const std::vector<Flat>& flat;
   int runs_left;
+  RunMemo* memo;
   int runs = 0;
   double best_sse = std::numeric_limits<double>::infinity();
   Eigen::VectorXd best_z;
@@ -185,6 +223,7 @@ EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
                      const RecordCost* screen, const std::vector<KnownStart>& known) {
   std::vector<Flat> flat;
   EffectFit fit;
+  RunMemo memo;
   const RecordCost& search_cost = screen != nullptr ? *screen : cost;
   // Each parameter's starts: what is known of it first, then its own.
   std::vector<std::vector<double>> start_lists;
@@ -211,7 +250,7 @@ EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
   Eigen::VectorXd best_z;
   // One Levenberg-Marquardt search from z; keeps its best point if it beats the best so far.
   const auto search_from = [&](Eigen::VectorXd z) {
-    Problem problem(declared, search_cost, effects, flat, max_runs_per_start);
+    Problem problem(declared, search_cost, effects, flat, max_runs_per_start, &memo);
     Eigen::LevenbergMarquardt<Problem> lm(problem);
     lm.setXtol(1e-4);
     lm.setFtol(1e-4);
@@ -254,7 +293,7 @@ EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
   if (points.size() > kSearchedStarts) {
     std::vector<std::pair<double, std::size_t>> ranked;
     for (std::size_t s = 0; s < points.size(); ++s) {
-      Problem probe(declared, search_cost, effects, flat, 1);
+      Problem probe(declared, search_cost, effects, flat, 1, &memo);
       Eigen::VectorXd f;
       probe(points[s], f);
       fit.evaluations += probe.runs;
@@ -292,7 +331,7 @@ EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
   if (screen != nullptr) {
     // The screen's optimum refined on the whole cost, which is what the candidates are judged
     // by; the start point itself is the first run, so the refinement never ends worse.
-    Problem problem(declared, cost, effects, flat, max_runs_per_start);
+    Problem problem(declared, cost, effects, flat, max_runs_per_start, &memo);
     Eigen::LevenbergMarquardt<Problem> lm(problem);
     lm.setXtol(1e-4);
     lm.setFtol(1e-4);
@@ -308,7 +347,7 @@ EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
   }
 
   // The Jacobian at the optimum, in the parameters' own units, for their uncertainty.
-  Problem at(declared, cost, effects, flat, static_cast<int>(flat.size()) + 1);
+  Problem at(declared, cost, effects, flat, static_cast<int>(flat.size()) + 1, &memo);
   Eigen::MatrixXd jz(static_cast<Eigen::Index>(cost.size()),
                      static_cast<Eigen::Index>(flat.size()));
   at.df(best_z, jz);

@@ -37,6 +37,8 @@ std::size_t Parameters(const EffectFit& f) {
   return f.parameters.size();
 }
 
+}  // namespace
+
 // How far the declared model's prediction moves when the rotor's levitated orbit is shifted by
 // a third of the displacement noise: a synchronous runout on each measured sensor, at two
 // phases, which the controller follows. The real rotor jitters at the trigger by about the
@@ -150,8 +152,6 @@ double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
   return std::max(worst, std::sqrt(along_axes));
 }
 
-}  // namespace
-
 double AgreementLimit(const Selection& s, const SelectionRules& rules) {
   // Noise, the model's own sensitivity and model error add in quadrature.
   return std::sqrt(std::pow(rules.explained_over_floor * s.noise_floor, 2) +
@@ -225,20 +225,27 @@ double ModelFloorAfter(const ConfigVariants& declared, const RecordCost& cost,
 }
 
 // One part's agreement statistics (Selection::Part) for the declared model.
+// `known`: the part's model floor as the step choice measured it (ModelFloors), else NaN.
 Selection::Part JudgePart(const ConfigVariants& declared, const RecordCost& cost,
                           const Eigen::VectorXd& residual_before, double noise_floor,
-                          const SelectionRules& rules) {
+                          const SelectionRules& rules, const ModelFloors::Part& known) {
   Selection::Part part;
   part.compared = true;
   part.rms_before = OverallRms(cost, residual_before.squaredNorm());
   part.rms_after = part.rms_before;
   part.noise_floor = noise_floor;
-  RecordRunOptions half = cost.run_options();
-  half.step_s = 0.5 * (half.step_s > 0 ? half.step_s : cost.declared().simulation.step_s);
-  const SimulatedRecord fine =
-      SimulateOnRecord(cost.declared(), cost.measurement(), cost.record(), half);
-  part.step_sensitivity = OverallRms(cost, (cost.Residual(fine) - residual_before).squaredNorm());
-  part.start_sensitivity = StartSensitivity(declared, cost, residual_before, rules.threads);
+  if (std::isfinite(known.step_sensitivity)) {
+    part.step_sensitivity = known.step_sensitivity;
+  } else {
+    RecordRunOptions half = cost.run_options();
+    half.step_s = 0.5 * (half.step_s > 0 ? half.step_s : cost.declared().simulation.step_s);
+    const SimulatedRecord fine =
+        SimulateOnRecord(cost.declared(), cost.measurement(), cost.record(), half);
+    part.step_sensitivity = OverallRms(cost, (cost.Residual(fine) - residual_before).squaredNorm());
+  }
+  part.start_sensitivity = std::isfinite(known.start_sensitivity)
+                               ? known.start_sensitivity
+                               : StartSensitivity(declared, cost, residual_before, rules.threads);
   Selection view;
   view.noise_floor = part.noise_floor;
   view.model_floor = std::max(part.step_sensitivity, part.start_sensitivity);
@@ -830,10 +837,12 @@ void AddSpeedsPartner(const ConfigVariants& declared, const RecordCost& whole,
 
 Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
                         const std::vector<Effect>& library, double noise_floor,
-                        const SelectionRules& rules) {
+                        const SelectionRules& rules, const ModelFloors* floors) {
+  const ModelFloors measured = floors != nullptr ? *floors : ModelFloors{};
   const Eigen::VectorXd whole_before = cost.Residual(cost.declared());
   // The caller's noise floor (the record's, through this cost's weights).
-  const Selection::Part whole = JudgePart(declared, cost, whole_before, noise_floor, rules);
+  const Selection::Part whole =
+      JudgePart(declared, cost, whole_before, noise_floor, rules, measured.whole);
   // The early, deterministic part (CostScope::kEarly) and the speeds alone (kSpeeds), each
   // judged on its own. Without anything to compare after the early part (a record that ends at
   // its first impact compares it all anyway), there is neither.
@@ -848,16 +857,17 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   };
   const std::optional<RecordCost> early_cost = part_cost(CostScope::kEarly);
   const std::optional<RecordCost> speeds_cost = part_cost(CostScope::kSpeeds);
-  const auto judge = [&](const std::optional<RecordCost>& c, Eigen::VectorXd* before) {
+  const auto judge = [&](const std::optional<RecordCost>& c, Eigen::VectorXd* before,
+                         const ModelFloors::Part& known) {
     Selection::Part part;
     if (!c) return part;
     *before = c->Residual(cost.declared());
-    return JudgePart(declared, *c, *before, c->NoiseFloor(), rules);
+    return JudgePart(declared, *c, *before, c->NoiseFloor(), rules, known);
   };
   Eigen::VectorXd early_before;
   Eigen::VectorXd speeds_before;
-  const Selection::Part early = judge(early_cost, &early_before);
-  const Selection::Part speeds = judge(speeds_cost, &speeds_before);
+  const Selection::Part early = judge(early_cost, &early_before, measured.early);
+  const Selection::Part speeds = judge(speeds_cost, &speeds_before, measured.speeds);
   const auto departure = [](const Selection::Part& p) {
     return p.compared ? p.rms_before / std::max(p.limit, 1e-300) : 0.0;
   };

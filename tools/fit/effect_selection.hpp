@@ -185,8 +185,28 @@ double AboveNoise(double rms, double noise_floor);
 /// The overall relative RMS of a residual vector of `cost` (sqrt(SSE / channels)).
 double OverallRms(const RecordCost& cost, double sse);
 
+/// How far the declared model's prediction on `cost` (whose declared residual is
+/// `residual_before`) moves when its start is shifted by what the record cannot resolve: the
+/// model floor's start term (Selection::start_sensitivity).
+double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
+                        const Eigen::VectorXd& residual_before, int threads);
+
+/// Each part's model floor measured once for the fit (ChooseFitStep), at the config's step: the
+/// start sensitivity there, and how far the fit's step moves the prediction from the one at half
+/// the config's step. NaN: not measured (SelectEffects measures it at the fit's step).
+struct ModelFloors {
+  struct Part {
+    double step_sensitivity = std::numeric_limits<double>::quiet_NaN();
+    double start_sensitivity = std::numeric_limits<double>::quiet_NaN();
+  };
+  Part whole, early, speeds;
+};
+
+/// `floors`, if given, are the parts' model floors (ModelFloors): a fit at a coarser step than
+/// the config's keeps the limits the config's step sets, instead of drawing its chaotic parts'
+/// start sensitivity afresh at its own step.
 Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
                         const std::vector<Effect>& library, double noise_floor,
-                        const SelectionRules& rules);
+                        const SelectionRules& rules, const ModelFloors* floors = nullptr);
 
 }  // namespace ambdrop

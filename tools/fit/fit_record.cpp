@@ -15,7 +15,7 @@ std::unique_ptr<FitResult> FitRecord(const ConfigVariants& config, const Measure
   RecordRunOptions run = options.run;
   if (!run.rotor_cache) run.rotor_cache = std::make_shared<ReducedRotorCache>();
   if (options.choose_step) {
-    fit->step = ChooseFitStep(declared, m, record, run);
+    fit->step = ChooseFitStep(config, m, record, run, options.rules);
   } else {
     fit->step.declared_s = fit->step.step_s =
         run.step_s > 0.0 ? run.step_s : declared.simulation.step_s;
@@ -38,7 +38,8 @@ std::unique_ptr<FitResult> FitRecord(const ConfigVariants& config, const Measure
   }
   fit->before = cost.Simulate(declared);
   fit->library = EffectLibrary(config);
-  fit->selection = SelectEffects(config, cost, fit->library, cost.NoiseFloor(), options.rules);
+  fit->selection = SelectEffects(config, cost, fit->library, cost.NoiseFloor(), options.rules,
+                                 options.choose_step ? &fit->step.floors : nullptr);
   for (const std::string& name : fit->selection.chosen) {
     for (const Effect& e : fit->library) {
       if (e.name == name) fit->chosen.push_back(&e);

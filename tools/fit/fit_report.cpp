@@ -155,6 +155,7 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     json.Key("declared_s").Number(o.step->declared_s);
     json.Key("fit_s").Number(o.step->step_s);
     json.Key("move_over_noise").Number(o.step->move_over_noise);
+    json.Key("limit_widening").Number(o.step->limit_widening);
     json.Key("why").String(o.step->why);
     json.EndObject();
   }
