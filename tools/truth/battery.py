@@ -8,7 +8,7 @@ exits 0 whatever the score; non-zero only when a fit or the generator fails or a
     battery.py AMBDROP AMBDROP_TRUTH RIG.json CONFIG.toml OUT
                [--declared [--count N]] [--jobs N] [--only NAME ...]
                [--record-file record.csv] [--markdown FILE] [--score-only] [--fit-arg ARG ...]
-               [--ceiling]
+               [--ceiling] [--clean-seeds N [--first-seed S]]
 
     AMBDROP, AMBDROP_TRUTH  the two binaries (build/ambdrop, build/tools/truth/ambdrop_truth)
     RIG.json, CONFIG.toml   the generator's rig and its translation into an ambdrop config
@@ -27,6 +27,10 @@ exits 0 whatever the score; non-zero only when a fit or the generator fails or a
     --markdown FILE         the table also as markdown
     --score-only            neither generate nor fit: score the fit.json files already in OUT
     --fit-arg ARG           passed on to `ambdrop fit` (repeat; e.g. --fit-arg=--threads=1)
+    --clean-seeds N         instead of the battery: N clean records of the rig, seeds S to
+                            S+N-1 (--first-seed, default 3: the battery's own are 1 and 2), each
+                            `ambdrop_truth --effect clean --seed`; the count is then the rate of
+                            invented effects on records of the rig as declared
     --ceiling               also fit each record with its truth's own `--set` lines
                             (OUT/fits/<record>/ceiling/): the residual the true numbers leave
                             on the part the record's fit judged, so the cut the record can show
@@ -565,6 +569,8 @@ def main():
     p.add_argument("--score-only", action="store_true")
     p.add_argument("--fit-arg", action="append", default=[])
     p.add_argument("--ceiling", action="store_true")
+    p.add_argument("--clean-seeds", type=int, default=0)
+    p.add_argument("--first-seed", type=int, default=3)
     args = p.parse_args()
     for f in (args.rig, args.config):
         if not Path(f).is_file():
@@ -579,13 +585,28 @@ def main():
                 if not os.access(b, os.X_OK):
                     raise BatteryError(f"{b}: not an executable")
             records.mkdir(parents=True, exist_ok=True)
-            mode = (["--battery-declared", str(records), "--count", str(args.count)]
-                    if args.declared else ["--battery", str(records)])
-            gen = subprocess.run([args.ambdrop_truth, "--rig", args.rig] + mode + ["--si"],
-                                 capture_output=True, text=True)
-            if gen.returncode != 0:
-                raise BatteryError(f"ambdrop_truth {mode[0]} exited {gen.returncode}: "
-                                   f"{gen.stderr.strip()}")
+            if args.clean_seeds > 0:
+                plan = []
+                for k in range(args.clean_seeds):
+                    seed = args.first_seed + k
+                    name = f"{k:02d}_clean_s{seed}"
+                    gen = subprocess.run([args.ambdrop_truth, "--rig", args.rig, "--effect",
+                                          "clean", "--seed", str(seed), "--out",
+                                          str(records / name), "--si"],
+                                         capture_output=True, text=True)
+                    if gen.returncode != 0:
+                        raise BatteryError(f"ambdrop_truth --effect clean --seed {seed} exited "
+                                           f"{gen.returncode}: {gen.stderr.strip()}")
+                    plan.append({"record": name, "blind": f"{name}/blind"})
+                (records / "battery.json").write_text(json.dumps(plan, indent=1) + "\n")
+            else:
+                mode = (["--battery-declared", str(records), "--count", str(args.count)]
+                        if args.declared else ["--battery", str(records)])
+                gen = subprocess.run([args.ambdrop_truth, "--rig", args.rig] + mode + ["--si"],
+                                     capture_output=True, text=True)
+                if gen.returncode != 0:
+                    raise BatteryError(f"ambdrop_truth {mode[0]} exited {gen.returncode}: "
+                                       f"{gen.stderr.strip()}")
         index_file = records / "battery.json"
         if not index_file.is_file():
             raise BatteryError(f"{index_file}: missing")
