@@ -39,24 +39,27 @@ FitStep ChooseFitStep(const ConfigVariants& config, const MeasurementParams& mea
     costs.emplace_back(declared, measurement, record, fine, 3000, scope);
     if (costs.back().size() == 0) costs.pop_back();
   }
-  const SimulatedRecord at_declared = SimulateOnRecord(declared, measurement, record, fine);
-  if (at_declared.status != StepStatus::kOk) {
+  // Each part's residual of the declared model run at `step_s`; false if the run stops early.
+  const auto residuals_at = [&](double step_s, std::vector<Eigen::VectorXd>* out_residuals) {
+    RecordRunOptions o = fine;
+    o.step_s = step_s;
+    const SimulatedRecord sim = SimulateOnRecord(declared, measurement, record, o);
+    if (sim.status != StepStatus::kOk) return false;
+    for (const RecordCost& c : costs) out_residuals->push_back(c.Residual(sim));
+    return true;
+  };
+  std::vector<Eigen::VectorXd> reference;
+  if (!residuals_at(out.declared_s, &reference)) {
     out.why = "the declared model stops early on the record at its own step: kept";
     return out;
   }
-  std::vector<Eigen::VectorXd> reference;
-  for (const RecordCost& c : costs) reference.push_back(c.Residual(at_declared));
   // The converged prediction the step term is measured from: half the declared step, as the
   // selection measures it at the declared step.
-  RecordRunOptions half = fine;
-  half.step_s = 0.5 * out.declared_s;
-  const SimulatedRecord at_half = SimulateOnRecord(declared, measurement, record, half);
-  if (at_half.status != StepStatus::kOk) {
+  std::vector<Eigen::VectorXd> converged;
+  if (!residuals_at(0.5 * out.declared_s, &converged)) {
     out.why = "the declared model stops early on the record at half its step: kept";
     return out;
   }
-  std::vector<Eigen::VectorXd> converged;
-  for (const RecordCost& c : costs) converged.push_back(c.Residual(at_half));
   const auto step_term = [&](std::size_t i, const Eigen::VectorXd& residual) {
     return OverallRms(costs[i], (residual - converged[i]).squaredNorm());
   };
