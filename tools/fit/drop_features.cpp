@@ -159,7 +159,21 @@ std::vector<FeatureComparison> CompareFeatures(const ModelParams& params,
         break;
     }
   }
-  // Whirl at each sensor plane with both axes, over the settled phase.
+  for (const PlaneWhirl& w : ComparePlaneWhirls(params, m, r, model)) {
+    out.push_back({std::string("whirl_ratio (") + WhirlName(w.record.kind) + " vs " +
+                       WhirlName(w.model.kind) + ")",
+                   w.plane, w.record.frequency_ratio, w.model.frequency_ratio});
+  }
+  return out;
+}
+
+std::vector<PlaneWhirl> ComparePlaneWhirls(const ModelParams& params, const MeasurementParams& m,
+                                           const MeasuredRecord& r, const SimulatedRecord& model) {
+  std::vector<PlaneWhirl> out;
+  const double clearance = params.tdbs.empty() ? 1e-3 : params.tdbs.front().clearance_m;
+  const std::size_t settled = RowAt(r, SettledFrom(r, model.trigger_time_s));
+  const double spin = params.simulation.spin_speed_rad_s;
+  // Over the settled phase.
   for (std::size_t s = 0; s < params.sensors.size(); ++s) {
     int cx = -1, cy = -1;
     for (std::size_t c = 0; c < m.channels.size(); ++c) {
@@ -171,12 +185,8 @@ std::vector<FeatureComparison> CompareFeatures(const ModelParams& params,
     if (cx < 0 || cy < 0) continue;
     const auto& mx = r.values[r.Column(m.channels[cx].column)];
     const auto& my = r.values[r.Column(m.channels[cy].column)];
-    const WhirlClassification a = Whirl(r, mx, my, settled, spin, clearance);
-    const WhirlClassification b =
-        Whirl(r, model.values[cx], model.values[cy], settled, spin, clearance);
-    out.push_back(
-        {std::string("whirl_ratio (") + WhirlName(a.kind) + " vs " + WhirlName(b.kind) + ")",
-         params.sensors[s].name, a.frequency_ratio, b.frequency_ratio});
+    out.push_back({params.sensors[s].name, Whirl(r, mx, my, settled, spin, clearance),
+                   Whirl(r, model.values[cx], model.values[cy], settled, spin, clearance)});
   }
   return out;
 }

@@ -10,6 +10,7 @@
 #include "io/config/config_measurement.hpp"
 #include "io/files/measured_csv.hpp"
 #include "tools/fit/simulate_on_record.hpp"
+#include "tools/fit/whirl_classifier.hpp"
 
 namespace ambdrop {
 
@@ -33,6 +34,18 @@ std::vector<FeatureComparison> CompareFeatures(const ModelParams& params,
                                                const MeasurementParams& measurement,
                                                const MeasuredRecord& record,
                                                const SimulatedRecord& model);
+
+/// The whirl at one sensor plane with both axes measured, after the drop settles: the
+/// record's and the model's (Jarroux 2016, seed 001, Sec. 3).
+struct PlaneWhirl {
+  std::string plane;  ///< the sensor's name
+  WhirlClassification record;
+  WhirlClassification model;
+};
+std::vector<PlaneWhirl> ComparePlaneWhirls(const ModelParams& params,
+                                           const MeasurementParams& measurement,
+                                           const MeasuredRecord& record,
+                                           const SimulatedRecord& model);
 
 /// The residual's signatures that stand out (above 1 % of a channel's range, or a clear lag,
 /// decay or whirl difference), largest first.

@@ -142,6 +142,15 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   }
   json.EndArray();
   if (m.trigger_state_from_record) json.Key("trigger_state_fit").String(s.trigger_state);
+  if (s.drop_mode.checked) {
+    json.Key("drop_mode_draw").BeginObject();
+    json.Key("record").String(s.drop_mode.record_mode);
+    json.Key("declared").String(s.drop_mode.model_mode);
+    json.Key("jitter_sigma_m").Number(s.drop_mode.jitter_sigma_m);
+    json.Key("runs").Integer(s.drop_mode.draws);
+    json.Key("first_in_record_mode").Integer(s.drop_mode.first_match);
+    json.EndObject();
+  }
   json.Key("noise_floor").Number(s.noise_floor);
   json.Key("model_floor").Number(s.model_floor);
   json.Key("step_sensitivity").Number(s.step_sensitivity);

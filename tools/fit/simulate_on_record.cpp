@@ -234,8 +234,11 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
   }
   for (AmbParams& a : params.ambs) a.current_profile.clear();
   // The prediction is the expected reading: noise and quantisation are not the model's to fit.
-  for (SensorParams& s : params.sensors) {
-    s.noise.enabled = false;
+  for (std::size_t i = 0; i < params.sensors.size(); ++i) {
+    SensorParams& s = params.sensors[i];
+    s.noise.enabled = closed && options.jitter_sigma_m > 0.0;
+    s.noise.std_dev_m = options.jitter_sigma_m;
+    s.noise.seed = options.jitter_seed * 7919u + i;
     s.quantisation_m = 0.0;
   }
   int rotor_speed_column = -1;

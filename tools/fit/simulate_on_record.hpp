@@ -5,6 +5,7 @@
 // started long before the trigger would drift away from the measurement on its own.
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <string>
@@ -70,6 +71,12 @@ struct RecordRunOptions {
   /// Added to the current each measured AMB axis held when the power failed ([amb][axis]):
   /// the start sensitivity's probes of SimulatedRecord::held_current_sd_A.
   std::array<std::array<double, 2>, kMaxAmbs> held_current_shift_A{};
+  /// Closed loop: the declared controller answers sensor noise of this standard deviation (m),
+  /// drawn from `jitter_seed`, as the real rotor's does: the rotor's jitter when the power
+  /// fails, which no model reproduces sample by sample (0: noise off, the expected reading).
+  /// The noise is in the predicted readings too.
+  double jitter_sigma_m = 0.0;
+  std::uint64_t jitter_seed = 1;
   /// Keep the modal positions and velocities at every simulated row (SimulatedRecord::states).
   bool keep_states = false;
 };

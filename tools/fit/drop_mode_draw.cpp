@@ -1,0 +1,97 @@
+#include "tools/fit/drop_mode_draw.hpp"
+
+#include <algorithm>
+#include <vector>
+
+#include "tools/fit/drop_features.hpp"
+#include "tools/fit/effect_selection.hpp"
+#include "tools/fit/noise_floor.hpp"
+#include "tools/fit/parallel_for.hpp"
+
+namespace ambdrop {
+namespace {
+
+// "backward_whirl at nde and de", or each plane's own where they differ.
+std::string ModeText(const std::vector<PlaneWhirl>& planes, bool record) {
+  std::string text;
+  bool same = true;
+  for (const PlaneWhirl& p : planes) {
+    const WhirlKind k = (record ? p.record : p.model).kind;
+    same = same && k == (record ? planes.front().record : planes.front().model).kind;
+  }
+  if (same) {
+    text = WhirlName((record ? planes.front().record : planes.front().model).kind);
+    text += " at ";
+    for (std::size_t i = 0; i < planes.size(); ++i) {
+      text += (i == 0 ? "" : i + 1 == planes.size() ? " and " : ", ") + planes[i].plane;
+    }
+    return text;
+  }
+  for (const PlaneWhirl& p : planes) {
+    text += (text.empty() ? "" : ", ") +
+            std::string(WhirlName((record ? p.record : p.model).kind)) + " at " + p.plane;
+  }
+  return text;
+}
+
+bool SameMode(const std::vector<PlaneWhirl>& planes) {
+  return std::all_of(planes.begin(), planes.end(),
+                     [](const PlaneWhirl& p) { return p.record.kind == p.model.kind; });
+}
+
+}  // namespace
+
+DropModeDraw DrawDropMode(const RecordCost& cost, const RecordCost& judged, int max_draws,
+                          int threads) {
+  DropModeDraw d;
+  const ModelParams& params = cost.declared();
+  const MeasurementParams& m = cost.measurement();
+  const MeasuredRecord& r = cost.record();
+  if (!ClosedLoop(params, m, cost.run_options())) return d;
+  const SimulatedRecord nominal = cost.Simulate(params);
+  const std::vector<PlaneWhirl> planes = ComparePlaneWhirls(params, m, r, nominal);
+  if (planes.empty() || SameMode(planes)) return d;
+  // The record's jitter: the median of its displacement channels' noise before the trigger.
+  std::size_t last = 0;
+  while (last < r.time_s.size() && r.time_s[last] < cost.trigger_time_s()) ++last;
+  std::vector<double> sigmas;
+  for (const MeasurementChannel& ch : m.channels) {
+    if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
+    const int column = r.Column(ch.column);
+    if (column >= 0)
+      sigmas.push_back(NoiseSigma(r.values[static_cast<std::size_t>(column)], 0, last));
+  }
+  if (sigmas.empty()) return d;
+  std::nth_element(sigmas.begin(), sigmas.begin() + sigmas.size() / 2, sigmas.end());
+  d.jitter_sigma_m = sigmas[sigmas.size() / 2];
+  if (!(d.jitter_sigma_m > 0.0)) return d;
+  d.checked = true;
+  d.record_mode = ModeText(planes, true);
+  d.model_mode = ModeText(planes, false);
+  constexpr int kBatch = 4;
+  for (int first = 1; first <= max_draws && d.first_match == 0; first += kBatch) {
+    const int count = std::min(kBatch, max_draws - first + 1);
+    std::vector<char> match(static_cast<std::size_t>(count), 0);
+    std::vector<double> rms(match.size(), 0.0);
+    ParallelFor(match.size(), threads, [&](std::size_t i) {
+      RecordRunOptions o = cost.run_options();
+      o.jitter_sigma_m = d.jitter_sigma_m;
+      o.jitter_seed = static_cast<std::uint64_t>(first) + i;
+      const SimulatedRecord run = SimulateOnRecord(params, m, r, o);
+      match[i] = SameMode(ComparePlaneWhirls(params, m, r, run));
+      if (match[i]) rms[i] = OverallRms(judged, judged.Residual(run).squaredNorm());
+    });
+    for (int i = 0; i < count; ++i) {
+      if (!match[static_cast<std::size_t>(i)]) continue;
+      ++d.matches;
+      if (d.first_match == 0) {
+        d.first_match = first + i;
+        d.match_rms = rms[static_cast<std::size_t>(i)];
+      }
+    }
+    d.draws += count;
+  }
+  return d;
+}
+
+}  // namespace ambdrop
