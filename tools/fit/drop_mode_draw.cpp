@@ -47,7 +47,10 @@ DropModeDraw DrawDropMode(const RecordCost& cost, const RecordCost& judged, int 
   const ModelParams& params = cost.declared();
   const MeasurementParams& m = cost.measurement();
   const MeasuredRecord& r = cost.record();
-  if (!ClosedLoop(params, m, cost.run_options())) return d;
+  // Open loop no controller answers the noise; with measurement.trigger_state = "record" the
+  // state at the trigger is the record's own, estimated from its lead window (whose
+  // uncertainty the start sensitivity spans), so a drawn jitter would be replaced there.
+  if (!ClosedLoop(params, m, cost.run_options()) || m.trigger_state_from_record) return d;
   const SimulatedRecord nominal = cost.Simulate(params);
   const std::vector<PlaneWhirl> planes = ComparePlaneWhirls(params, m, r, nominal);
   if (planes.empty() || SameMode(planes)) return d;

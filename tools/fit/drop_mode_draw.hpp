@@ -33,8 +33,9 @@ struct DropModeDraw {
 /// Runs the declared model (`cost`'s) with its controller answering sensor noise of the
 /// record's level before the trigger (the displacement channels' median noise), seeds 1 to
 /// `max_draws` in batches of four, until one drop is in the record's mode at every plane where
-/// both axes are measured. Nothing is run where the modes agree, open loop, or without a
-/// plane. Deterministic: the batches do not depend on `threads`.
+/// both axes are measured. Nothing is run where the modes agree, open loop, with
+/// measurement.trigger_state = "record" (the record's own jitter is then estimated), or
+/// without a plane. Deterministic: the batches do not depend on `threads`.
 /// `judged`: the part whose residual `match_rms` is (whole, start or speeds) over `cost`'s run.
 DropModeDraw DrawDropMode(const RecordCost& cost, const RecordCost& judged, int max_draws,
                           int threads);
