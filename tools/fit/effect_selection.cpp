@@ -1069,31 +1069,41 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
       judged_now.rms_after <= judged_now.limit_after) {
     AddSpeedsPartner(declared, cost, judged, *speeds_cost, library, rules, others, on, &s);
   }
-  // A drop whose start the declared model matches and whose mode it misses after the first
-  // impacts (rocking where the record whirls) may be a draw of the rotor's jitter when the power
-  // failed: if the declared model reaches the record's mode with that jitter drawn, no effect is
-  // needed for it, and whatever cut the residual by flipping the model's mode is not evidence.
-  // The verdict cannot then ask the parts after the start to agree sample by sample (two runs
-  // in one mode differ by more than the limit: the chosen models' own floor was 0.06-0.10
-  // against limits of 0.02 on the rigid rig's clean records); it says what it checked.
-  if (start_agrees && s.verdict != "no_effect_needed" && rules.drop_mode_draws > 0) {
-    s.drop_mode = DrawDropMode(cost, judged, rules.drop_mode_draws, rules.threads);
-    if (s.drop_mode.checked && s.drop_mode.first_match > 0) {
+  // A drop whose start the declared model matches and that departs after the first impacts may
+  // be a draw of the rotor's jitter when the power failed: if the declared model, with that
+  // jitter drawn, agrees with the record on the judged part, or reaches the record's drop mode
+  // where the noise-free run does not (rocking where the record whirls), no effect is needed,
+  // and whatever cut the residual is not evidence. In another mode the parts after the start
+  // cannot be asked to agree sample by sample: two runs in one whirl differ by more than the
+  // limit (the chosen models' own floors were 0.06-0.10 against limits of 0.02 on the rigid
+  // rig's clean records).
+  if (start_agrees && s.verdict != "no_effect_needed" && rules.jitter_draws > 0) {
+    s.jitter = DrawJitter(cost, judged, s.limit, rules.jitter_draws, rules.threads);
+    const JitterDraws& j = s.jitter;
+    const bool within = j.first_within > 0;
+    if (within || j.first_match > 0) {
       std::string instead;
       for (const std::string& name : s.chosen) instead += (instead.empty() ? "" : " + ") + name;
+      const std::string what =
+          within ? fmt::format(
+                       "agrees with the record {} ({:.3g}, limit {:.3g}; the noise-free "
+                       "run leaves {:.3g})",
+                       on == "speeds" ? "on the speeds" : "over the whole record", j.within_rms,
+                       s.limit, s.rms_before)
+                 : fmt::format(
+                       "is {} as the record's drop is, where the noise-free run's is {} "
+                       "(residual {:.3g}, the noise-free run's {:.3g})",
+                       j.record_mode, j.model_mode, j.match_rms, s.rms_before);
       s.reason = fmt::format(
-          "the declared model agrees with the drop's start ({:.3g}, limit {:.3g}); after it the "
-          "record's drop is {} where the declared model's noise-free one is {}, and run {} of "
-          "{} of the declared model with its controller answering sensor noise of the record's "
-          "level ({:.2g} m) is {} too (residual {:.3g} where the noise-free run leaves {:.3g}): "
-          "the drop's mode is a draw of the rotor's jitter when the power failed, and no effect "
-          "is needed for it{}",
-          early.rms_before, early.limit, s.drop_mode.record_mode, s.drop_mode.model_mode,
-          s.drop_mode.first_match, s.drop_mode.draws, s.drop_mode.jitter_sigma_m,
-          s.drop_mode.record_mode, s.drop_mode.match_rms, s.rms_before,
+          "the declared model agrees with the drop's start ({:.3g}, limit {:.3g}), and run {} of "
+          "{} of it with its controller answering sensor noise of the record's level ({:.2g} m) "
+          "{}: what departs after the start is a draw of the rotor's jitter when the power "
+          "failed, and no effect is needed for it{}",
+          early.rms_before, early.limit, within ? j.first_within : j.first_match, j.draws,
+          j.jitter_sigma_m, what,
           instead.empty() ? std::string()
-                          : fmt::format(" ({}, which flips the model's mode, was not taken: it "
-                                        "took the residual from {:.3g} to {:.3g}, {})",
+                          : fmt::format(" ({} was not taken: it took the residual from {:.3g} to "
+                                        "{:.3g}, {})",
                                         instead, s.rms_before, s.rms_after, s.verdict));
       s.verdict = "no_effect_needed";
       s.chosen.clear();
@@ -1109,11 +1119,14 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
         p->rms_after = p->rms_before;
         p->limit_after = p->limit;
       }
-    } else if (s.drop_mode.checked) {
+    } else if (j.ran) {
       s.reason += fmt::format(
-          "; the record's drop is {} where the declared model's is {}, and none of {} runs with "
-          "the rotor's jitter at the trigger drawn reached the record's",
-          s.drop_mode.record_mode, s.drop_mode.model_mode, s.drop_mode.draws);
+          "; none of {} runs of the declared model with the rotor's jitter at the trigger drawn "
+          "agreed with the record{}",
+          j.draws,
+          j.mode_differs ? fmt::format(" or reached its drop mode ({}; the model's {})",
+                                       j.record_mode, j.model_mode)
+                         : std::string());
     }
   }
   // What would tell the look-alikes apart: the channel where each one's prediction and the

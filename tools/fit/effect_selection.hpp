@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "tools/fit/drop_mode_draw.hpp"
 #include "tools/fit/effect_fit.hpp"
+#include "tools/fit/jitter_draws.hpp"
 
 namespace ambdrop {
 
@@ -49,9 +49,9 @@ struct SelectionRules {
   /// Screened candidates (Effect::screened) fitted in full: the best this many by the
   /// screening's predicted residual, among those that could be accepted at all.
   int screened_fits = 6;
-  /// Runs of the declared model with its rotor's jitter drawn, at most, where the record's drop
-  /// mode differs from the model's after a start they agree on (DrawDropMode); 0: none.
-  int drop_mode_draws = 16;
+  /// Runs of the declared model with its rotor's jitter drawn, at most, where it agrees with
+  /// the drop's start and departs after it (DrawJitter); 0: none.
+  int jitter_draws = 16;
   int threads = 2;
   int max_runs_per_start = 40;
 };
@@ -168,10 +168,10 @@ struct Selection {
   double rms_after = 0.0;
   std::string verdict;  ///< explained | partly_explained | no_effect_needed | unexplained
   std::string reason;   ///< one sentence: why this verdict
-  /// Where the record's drop mode (rocking, backward whirl) differs from the declared model's
-  /// after a start they agree on: the runs of the declared model with its rotor's jitter at the
-  /// trigger drawn (drop_mode_draw.hpp); `checked` false otherwise.
-  DropModeDraw drop_mode;
+  /// Where the declared model agrees with the drop's start and departs after it: the runs of
+  /// the declared model with its rotor's jitter at the trigger drawn (jitter_draws.hpp);
+  /// `ran` false otherwise.
+  JitterDraws jitter;
   /// measurement.trigger_state = "record": what the lead window's fit of the declared model
   /// did, or why it kept the model's own state (LeadStateFit::note); "" otherwise.
   std::string trigger_state;

@@ -142,13 +142,14 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   }
   json.EndArray();
   if (m.trigger_state_from_record) json.Key("trigger_state_fit").String(s.trigger_state);
-  if (s.drop_mode.checked) {
-    json.Key("drop_mode_draw").BeginObject();
-    json.Key("record").String(s.drop_mode.record_mode);
-    json.Key("declared").String(s.drop_mode.model_mode);
-    json.Key("jitter_sigma_m").Number(s.drop_mode.jitter_sigma_m);
-    json.Key("runs").Integer(s.drop_mode.draws);
-    json.Key("first_in_record_mode").Integer(s.drop_mode.first_match);
+  if (s.jitter.ran) {
+    json.Key("jitter_draws").BeginObject();
+    json.Key("jitter_sigma_m").Number(s.jitter.jitter_sigma_m);
+    json.Key("runs").Integer(s.jitter.draws);
+    json.Key("first_within_limit").Integer(s.jitter.first_within);
+    json.Key("record_mode").String(s.jitter.record_mode);
+    json.Key("declared_mode").String(s.jitter.model_mode);
+    json.Key("first_in_record_mode").Integer(s.jitter.first_match);
     json.EndObject();
   }
   json.Key("noise_floor").Number(s.noise_floor);

@@ -404,8 +404,11 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
   out.first_row = static_cast<std::size_t>(
       std::lower_bound(r.time_s.begin(), r.time_s.end(), t_start - 0.5 * dt) - r.time_s.begin());
   out.values.assign(m.channels.size(), std::vector<double>(record_rows, kNaN));
-  // The record's sampler: what the rows predict (noise and quantisation off, above).
-  SensorEmulator sensors(model.params.sensors, r.SampleInterval());
+  // The record's sampler: what the rows predict (noise and quantisation off, above; a drawn
+  // jitter's noise drives the controller, not the expected reading).
+  std::vector<SensorParams> expected = model.params.sensors;
+  for (SensorParams& s : expected) s.noise.enabled = false;
+  SensorEmulator sensors(expected, r.SampleInterval());
   const PowerEvent failure = ScheduledFailure(model);
   SensorReadings readings;
   std::size_t row = out.first_row;

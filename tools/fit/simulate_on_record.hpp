@@ -74,7 +74,7 @@ struct RecordRunOptions {
   /// Closed loop: the declared controller answers sensor noise of this standard deviation (m),
   /// drawn from `jitter_seed`, as the real rotor's does: the rotor's jitter when the power
   /// fails, which no model reproduces sample by sample (0: noise off, the expected reading).
-  /// The noise is in the predicted readings too.
+  /// The predicted readings stay the expected ones (noise off).
   double jitter_sigma_m = 0.0;
   std::uint64_t jitter_seed = 1;
   /// Keep the modal positions and velocities at every simulated row (SimulatedRecord::states).

@@ -1,4 +1,4 @@
-#include "tools/fit/drop_mode_draw.hpp"
+#include "tools/fit/jitter_draws.hpp"
 
 #include <algorithm>
 #include <vector>
@@ -13,23 +13,20 @@ namespace {
 
 // "backward_whirl at nde and de", or each plane's own where they differ.
 std::string ModeText(const std::vector<PlaneWhirl>& planes, bool record) {
+  const auto kind = [&](const PlaneWhirl& p) { return (record ? p.record : p.model).kind; };
+  const bool same = std::all_of(planes.begin(), planes.end(), [&](const PlaneWhirl& p) {
+    return kind(p) == kind(planes.front());
+  });
   std::string text;
-  bool same = true;
-  for (const PlaneWhirl& p : planes) {
-    const WhirlKind k = (record ? p.record : p.model).kind;
-    same = same && k == (record ? planes.front().record : planes.front().model).kind;
-  }
   if (same) {
-    text = WhirlName((record ? planes.front().record : planes.front().model).kind);
-    text += " at ";
+    text = std::string(WhirlName(kind(planes.front()))) + " at ";
     for (std::size_t i = 0; i < planes.size(); ++i) {
       text += (i == 0 ? "" : i + 1 == planes.size() ? " and " : ", ") + planes[i].plane;
     }
     return text;
   }
   for (const PlaneWhirl& p : planes) {
-    text += (text.empty() ? "" : ", ") +
-            std::string(WhirlName((record ? p.record : p.model).kind)) + " at " + p.plane;
+    text += (text.empty() ? "" : ", ") + std::string(WhirlName(kind(p))) + " at " + p.plane;
   }
   return text;
 }
@@ -41,9 +38,9 @@ bool SameMode(const std::vector<PlaneWhirl>& planes) {
 
 }  // namespace
 
-DropModeDraw DrawDropMode(const RecordCost& cost, const RecordCost& judged, int max_draws,
-                          int threads) {
-  DropModeDraw d;
+JitterDraws DrawJitter(const RecordCost& cost, const RecordCost& judged, double judged_limit,
+                       int max_draws, int threads) {
+  JitterDraws d;
   const ModelParams& params = cost.declared();
   const MeasurementParams& m = cost.measurement();
   const MeasuredRecord& r = cost.record();
@@ -51,9 +48,6 @@ DropModeDraw DrawDropMode(const RecordCost& cost, const RecordCost& judged, int 
   // state at the trigger is the record's own, estimated from its lead window (whose
   // uncertainty the start sensitivity spans), so a drawn jitter would be replaced there.
   if (!ClosedLoop(params, m, cost.run_options()) || m.trigger_state_from_record) return d;
-  const SimulatedRecord nominal = cost.Simulate(params);
-  const std::vector<PlaneWhirl> planes = ComparePlaneWhirls(params, m, r, nominal);
-  if (planes.empty() || SameMode(planes)) return d;
   // The record's jitter: the median of its displacement channels' noise before the trigger.
   std::size_t last = 0;
   while (last < r.time_s.size() && r.time_s[last] < cost.trigger_time_s()) ++last;
@@ -61,18 +55,24 @@ DropModeDraw DrawDropMode(const RecordCost& cost, const RecordCost& judged, int 
   for (const MeasurementChannel& ch : m.channels) {
     if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
     const int column = r.Column(ch.column);
-    if (column >= 0)
+    if (column >= 0) {
       sigmas.push_back(NoiseSigma(r.values[static_cast<std::size_t>(column)], 0, last));
+    }
   }
   if (sigmas.empty()) return d;
   std::nth_element(sigmas.begin(), sigmas.begin() + sigmas.size() / 2, sigmas.end());
   d.jitter_sigma_m = sigmas[sigmas.size() / 2];
   if (!(d.jitter_sigma_m > 0.0)) return d;
-  d.checked = true;
-  d.record_mode = ModeText(planes, true);
-  d.model_mode = ModeText(planes, false);
+  const std::vector<PlaneWhirl> planes = ComparePlaneWhirls(params, m, r, cost.Simulate(params));
+  d.mode_differs = !planes.empty() && !SameMode(planes);
+  if (!planes.empty()) {
+    d.record_mode = ModeText(planes, true);
+    d.model_mode = ModeText(planes, false);
+  }
+  d.ran = true;
   constexpr int kBatch = 4;
-  for (int first = 1; first <= max_draws && d.first_match == 0; first += kBatch) {
+  for (int first = 1; first <= max_draws && d.first_within == 0 && d.first_match == 0;
+       first += kBatch) {
     const int count = std::min(kBatch, max_draws - first + 1);
     std::vector<char> match(static_cast<std::size_t>(count), 0);
     std::vector<double> rms(match.size(), 0.0);
@@ -81,15 +81,18 @@ DropModeDraw DrawDropMode(const RecordCost& cost, const RecordCost& judged, int 
       o.jitter_sigma_m = d.jitter_sigma_m;
       o.jitter_seed = static_cast<std::uint64_t>(first) + i;
       const SimulatedRecord run = SimulateOnRecord(params, m, r, o);
-      match[i] = SameMode(ComparePlaneWhirls(params, m, r, run));
-      if (match[i]) rms[i] = OverallRms(judged, judged.Residual(run).squaredNorm());
+      match[i] = d.mode_differs && SameMode(ComparePlaneWhirls(params, m, r, run));
+      rms[i] = OverallRms(judged, judged.Residual(run).squaredNorm());
     });
-    for (int i = 0; i < count; ++i) {
-      if (!match[static_cast<std::size_t>(i)]) continue;
-      ++d.matches;
-      if (d.first_match == 0) {
-        d.first_match = first + i;
-        d.match_rms = rms[static_cast<std::size_t>(i)];
+    for (std::size_t i = 0; i < match.size(); ++i) {
+      const int run = first + static_cast<int>(i);
+      if (d.first_within == 0 && rms[i] <= judged_limit) {
+        d.first_within = run;
+        d.within_rms = rms[i];
+      }
+      if (d.first_match == 0 && match[i]) {
+        d.first_match = run;
+        d.match_rms = rms[i];
       }
     }
     d.draws += count;
