@@ -45,27 +45,35 @@ std::size_t Parameters(const EffectFit& f) {
 // sensors' noise (its controller answers that noise), which no model reproduces sample by
 // sample: a drop whose bounces, rest or whirl depend on less than that cannot be fitted below
 // this spread, whatever the effect. 0 without displacement channels.
+double DisplacementNoiseMedian(const RecordCost& cost) {
+  const MeasuredRecord& r = cost.record();
+  std::size_t last = 0;
+  while (last < r.time_s.size() && r.time_s[last] < cost.trigger_time_s()) ++last;
+  std::vector<double> sigmas;
+  for (const MeasurementChannel& ch : cost.measurement().channels) {
+    if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
+    const int column = r.Column(ch.column);
+    if (column < 0) continue;
+    sigmas.push_back(NoiseSigma(r.values[static_cast<std::size_t>(column)], 0, last));
+  }
+  if (sigmas.empty()) return 0.0;
+  std::nth_element(sigmas.begin(), sigmas.begin() + sigmas.size() / 2, sigmas.end());
+  return sigmas[sigmas.size() / 2];
+}
+
 double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
                         const Eigen::VectorXd& residual_before, int threads) {
   const MeasurementParams& m = cost.measurement();
   const MeasuredRecord& r = cost.record();
   const ModelParams& params = cost.declared();
-  std::vector<double> sigmas;
   std::vector<int> sensors;
-  std::size_t last = 0;
-  while (last < r.time_s.size() && r.time_s[last] < cost.trigger_time_s()) ++last;
   for (const MeasurementChannel& ch : m.channels) {
-    if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
-    const int column = r.Column(ch.column);
-    if (column < 0) continue;
-    sigmas.push_back(NoiseSigma(r.values[static_cast<std::size_t>(column)], 0, last));
+    if (ch.quantity != MeasuredQuantity::kDisplacement || r.Column(ch.column) < 0) continue;
     if (std::find(sensors.begin(), sensors.end(), ch.index) == sensors.end()) {
       sensors.push_back(ch.index);
     }
   }
-  if (sigmas.empty()) return 0.0;
-  std::nth_element(sigmas.begin(), sigmas.begin() + sigmas.size() / 2, sigmas.end());
-  const double amplitude = sigmas[sigmas.size() / 2] / 3.0;
+  const double amplitude = DisplacementNoiseMedian(cost) / 3.0;
   if (!(amplitude > 0.0)) return 0.0;
   std::vector<std::vector<std::string>> variants;
   for (const int index : sensors) {

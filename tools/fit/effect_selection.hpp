@@ -193,6 +193,11 @@ double AboveNoise(double rms, double noise_floor);
 /// The overall relative RMS of a residual vector of `cost` (sqrt(SSE / channels)).
 double OverallRms(const RecordCost& cost, double sse);
 
+/// The record's displacement noise before the trigger: the median of its displacement
+/// channels' noise (NoiseSigma), m; 0 without a displacement channel. What the real rotor's
+/// controller answers, and so how much it jitters when the power fails.
+double DisplacementNoiseMedian(const RecordCost& cost);
+
 /// How far the declared model's prediction on `cost` (whose declared residual is
 /// `residual_before`) moves when its start is shifted by what the record cannot resolve: the
 /// model floor's start term (Selection::start_sensitivity).

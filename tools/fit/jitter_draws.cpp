@@ -5,7 +5,6 @@
 
 #include "tools/fit/drop_features.hpp"
 #include "tools/fit/effect_selection.hpp"
-#include "tools/fit/noise_floor.hpp"
 #include "tools/fit/parallel_for.hpp"
 
 namespace ambdrop {
@@ -48,20 +47,8 @@ JitterDraws DrawJitter(const RecordCost& cost, const RecordCost& judged, double 
   // state at the trigger is the record's own, estimated from its lead window (whose
   // uncertainty the start sensitivity spans), so a drawn jitter would be replaced there.
   if (!ClosedLoop(params, m, cost.run_options()) || m.trigger_state_from_record) return d;
-  // The record's jitter: the median of its displacement channels' noise before the trigger.
-  std::size_t last = 0;
-  while (last < r.time_s.size() && r.time_s[last] < cost.trigger_time_s()) ++last;
-  std::vector<double> sigmas;
-  for (const MeasurementChannel& ch : m.channels) {
-    if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
-    const int column = r.Column(ch.column);
-    if (column >= 0) {
-      sigmas.push_back(NoiseSigma(r.values[static_cast<std::size_t>(column)], 0, last));
-    }
-  }
-  if (sigmas.empty()) return d;
-  std::nth_element(sigmas.begin(), sigmas.begin() + sigmas.size() / 2, sigmas.end());
-  d.jitter_sigma_m = sigmas[sigmas.size() / 2];
+  // The record's jitter: what its controller answers.
+  d.jitter_sigma_m = DisplacementNoiseMedian(cost);
   if (!(d.jitter_sigma_m > 0.0)) return d;
   const std::vector<PlaneWhirl> planes = ComparePlaneWhirls(params, m, r, cost.Simulate(params));
   d.mode_differs = !planes.empty() && !SameMode(planes);
