@@ -116,7 +116,12 @@ Truth Draw(const Effect& e, const ModelParams& declared, PortableRandom* r) {
   } else if (f == "tdb_drag_torque") {
     t.values = {Between(r, 1.0, 4.0)};
   } else if (f == "ribbon_dry_friction") {
-    t.values = {Between(r, 500.0, 2500.0)};
+    // A ribbon slipping softer than its catalogue stiffness (the declared Kelvin-Voigt one, the
+    // search's top), hardening within its TDB's clearance (the search's top: 4 clearances).
+    const double c = TdbOf(declared, e.name).clearance_m;
+    const double kv = e.parameters[1].upper;
+    t.declared = {0.0, kv, e.parameters[2].upper};
+    t.values = {Between(r, 500.0, 2500.0), kv * Between(r, 0.03, 0.3), c * Between(r, 0.5, 1.5)};
   } else if (f == "ribbon_cross_coupling") {
     t.values = {Between(r, 0.3, 1.2)};
   } else {

@@ -19,18 +19,32 @@ struct Flat {
 };
 
 // Bounded parameters are searched through p = lo + (hi - lo) (1 + sin z) / 2, so that the
-// unconstrained Levenberg-Marquardt never leaves the bounds; angles are searched as they are.
+// unconstrained Levenberg-Marquardt never leaves the bounds (a log-scaled one the same in its
+// logarithm); angles are searched as they are.
 double ToValue(const EffectParameter& p, double z) {
   if (p.periodic) return z;
+  if (p.log_scale) {
+    const double lo = std::log(p.lower), hi = std::log(p.upper);
+    return std::clamp(std::exp(lo + (hi - lo) * 0.5 * (1.0 + std::sin(z))), p.lower, p.upper);
+  }
   return p.lower + (p.upper - p.lower) * 0.5 * (1.0 + std::sin(z));
 }
 double ToSearch(const EffectParameter& p, double v) {
   if (p.periodic) return v;
+  if (p.log_scale) {
+    const double lo = std::log(p.lower), hi = std::log(p.upper);
+    const double at = std::log(std::clamp(v, p.lower, p.upper));
+    return std::asin(std::clamp(2.0 * (at - lo) / (hi - lo) - 1.0, -1.0, 1.0));
+  }
   const double u = std::clamp(2.0 * (v - p.lower) / (p.upper - p.lower) - 1.0, -1.0, 1.0);
   return std::asin(u);
 }
 double Slope(const EffectParameter& p, double z) {
-  return p.periodic ? 1.0 : 0.5 * (p.upper - p.lower) * std::cos(z);
+  if (p.periodic) return 1.0;
+  if (p.log_scale) {
+    return ToValue(p, z) * 0.5 * (std::log(p.upper) - std::log(p.lower)) * std::cos(z);
+  }
+  return 0.5 * (p.upper - p.lower) * std::cos(z);
 }
 
 // Searches from every combination of starts up to this many (9: two parameters of three).
@@ -278,7 +292,7 @@ EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
     for (std::size_t i = 0; i < flat.size(); ++i) {
       const EffectParameter& p = *flat[i].parameter;
       const std::vector<double>& list = start_lists[i];
-      double v = 0.5 * (p.lower + p.upper);
+      double v = p.log_scale ? std::sqrt(p.lower * p.upper) : 0.5 * (p.lower + p.upper);
       if (!list.empty()) {
         v = all ? list[rest % list.size()] : list[s % list.size()];
         rest /= list.size();

@@ -534,6 +534,16 @@ void AddCoastDownEffects(const ModelParams& declared, std::vector<Effect>* effec
   effects->push_back(RotorCoastDown("windage", "windage_N_m_s2", ip / w0));
 }
 
+// The rotor's weight (N), 0 where the declared model cannot be built (the fit reports that).
+double RotorWeightN(const ModelParams& declared) {
+  if (!declared.gravity.enabled) return 0.0;
+  try {
+    return BuildModel(declared).rotor.mass_kg * declared.gravity.acceleration_m_s2;
+  } catch (const std::exception&) {
+    return 0.0;
+  }
+}
+
 // A TDB's declared linear ribbon: the 4-DOF TDB's Kelvin-Voigt one, or the contact-law TDB's
 // bilinear law before crushing (keq, ceq). The ribbon laws replace it in its table.
 struct LinearRibbon {
@@ -559,46 +569,81 @@ std::optional<LinearRibbon> LinearRibbonOf(const TdbParams& t) {
   return std::nullopt;
 }
 
-// A ribbon law in place of a TDB's linear ribbon, one parameter fitted: what the ribbon effects
-// share (the quantities that reveal them; the overrides the law writes for a value).
+// A ribbon law in place of a TDB's linear ribbon: what the ribbon effects share (the quantities
+// that reveal them; the overrides the law writes for its values).
 Effect RibbonLawEffect(const TdbParams& t, const std::string& family, std::string description,
-                       EffectParameter parameter, double probe,
-                       std::function<std::vector<std::string>(double)> law) {
+                       std::vector<EffectParameter> parameters, std::vector<double> probe,
+                       std::function<std::vector<std::string>(const std::vector<double>&)> law) {
   Effect e;
   e.name = family + ":" + t.name;
   e.family = family;
   e.description = std::move(description);
-  e.parameters = {std::move(parameter)};
+  e.parameters = std::move(parameters);
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce, Q::kTdbSupportForce,
                    Q::kControllerCommand};
-  e.probe = {probe};
-  e.overrides = [law = std::move(law)](const std::vector<double>& v) { return law(v[0]); };
+  e.probe = std::move(probe);
+  e.overrides = std::move(law);
   return e;
 }
 
-// A Kelvin-Voigt ribbon that is really a dry-friction one: the generalized Dahl law in its
-// place, its slipping threshold fitted. The rest is tied to what is declared: the slipping
-// stiffness is the Kelvin-Voigt stiffness, and beta and the hardening envelopes are the seed-000
-// rig's (configs/jarroux2019_industrial_model3.toml), which carry a rig's weight share.
-Effect RibbonDryFriction(const TdbParams& t, const LinearRibbon& kv) {
+// A linear ribbon that is really a dry-friction one: the generalized Dahl law (Jarroux 2019
+// Eq. (1)-(3)) in its place. Three numbers decide a drop on it and none is declared: the
+// slipping threshold muFN (the force the housing's bumps hold before they slip), the slipping
+// stiffness kslip left once they slip (the paper's reading of a manufacturer's stiffness; a
+// ribbon whose bumps slip freely keeps far less, so it is searched over four decades below the
+// declared one), and the travel after which the ribbon's stopped ends harden it. The travel is
+// where the hardening adds as much as muFN, a exp(b u) = muFN, with the seed-000 rig's shape
+// (configs/jarroux2019_industrial_model3.toml: a = 50 N of muFN = 1000 N, so b u = ln 20 = 3);
+// beta is that rig's too: the drop barely moves with it. The threshold starts at the TDB's share
+// of the rotor's weight (the seed rig's assumption) and three times it.
+constexpr double kDahlHardeningShape = 3.0;
+
+Effect RibbonDryFriction(const TdbParams& t, const LinearRibbon& kv, double weight_share_N) {
+  const double share = weight_share_N > 0.0 ? weight_share_N : 500.0;
+  const double c = t.clearance_m;
+  const double k_lo = 1e-4 * kv.stiffness_N_per_m, k_hi = kv.stiffness_N_per_m;
+  const double u_lo = 0.1 * c, u_hi = 4.0 * c;
+  // A third and two thirds of the way through the decades.
+  const auto third = [](double lo, double hi, double f) { return lo * std::pow(hi / lo, f); };
+  // A ribbon holding under a twentieth of its static load has no friction worth the name, and
+  // its hardening (tied to muFN) would vanish with it.
+  EffectParameter threshold{
+      "slipping_threshold_N", 0.05 * share, std::max(5000.0, 20.0 * share), {share, 3.0 * share}};
+  EffectParameter stiffness{"slipping_stiffness_N_per_m",
+                            k_lo,
+                            k_hi,
+                            {third(k_lo, k_hi, 1.0 / 3.0), third(k_lo, k_hi, 2.0 / 3.0)}};
+  stiffness.log_scale = true;
+  // A declared crushing capacity is the ribbon's travel before its ends stop it.
+  const double crushing_m =
+      t.model() == TdbModelKind::kContactLaw ? t.contact_law().ribbon_crushing_m : 0.0;
+  EffectParameter travel{
+      "hardening_travel_m", u_lo, u_hi,
+      crushing_m > u_lo && crushing_m < u_hi
+          ? std::vector<double>{0.5 * crushing_m, crushing_m}
+          : std::vector<double>{third(u_lo, u_hi, 1.0 / 3.0), third(u_lo, u_hi, 2.0 / 3.0)}};
+  travel.log_scale = true;
   return RibbonLawEffect(
       t, "ribbon_dry_friction",
       fmt::format("dry friction in TDB {}'s ribbon: the generalized Dahl law (Jarroux 2019 Eq. "
-                  "(1)-(3)) in place of its linear ribbon, slipping threshold fitted",
+                  "(1)-(3)) in place of its linear ribbon; slipping threshold, slipping stiffness "
+                  "and the travel to its hardening fitted",
                   t.name),
-      {"slipping_threshold_N", 0.0, 5000.0, {200.0, 1000.0, 2500.0}}, 1000.0,
-      [kv](double threshold_N) {
+      {threshold, stiffness, travel}, {3.0 * share, third(k_lo, k_hi, 1.0 / 3.0), c},
+      [kv](const std::vector<double>& v) {
         const std::string dahl = kv.table + "dahl.";
-        return std::vector<std::string>{
-            SetText(kv.table + "ribbon", "dahl"),
-            Set(dahl + "slipping_threshold_N", std::max(0.0, threshold_N)),
-            Set(dahl + "threshold_scale", 1.0),
-            Set(dahl + "slipping_stiffness_N_per_m", kv.stiffness_N_per_m),
-            Set(dahl + "beta_per_m", 1e6),
-            Set(dahl + "upper_hardening_N", 50.0),
-            Set(dahl + "upper_hardening_rate_per_m", 2.5e4),
-            Set(dahl + "lower_hardening_N", 50.0),
-            Set(dahl + "lower_hardening_rate_per_m", 2.5e4)};
+        const double mu_fn = v[0];
+        const double rate_per_m = kDahlHardeningShape / v[2];
+        const double hardening_N = mu_fn * std::exp(-kDahlHardeningShape);
+        return std::vector<std::string>{SetText(kv.table + "ribbon", "dahl"),
+                                        Set(dahl + "slipping_threshold_N", mu_fn),
+                                        Set(dahl + "threshold_scale", 1.0),
+                                        Set(dahl + "slipping_stiffness_N_per_m", v[1]),
+                                        Set(dahl + "beta_per_m", 1e6),
+                                        Set(dahl + "upper_hardening_N", hardening_N),
+                                        Set(dahl + "upper_hardening_rate_per_m", rate_per_m),
+                                        Set(dahl + "lower_hardening_N", hardening_N),
+                                        Set(dahl + "lower_hardening_rate_per_m", rate_per_m)};
       });
 }
 
@@ -610,7 +655,8 @@ Effect RibbonCrossCoupling(const TdbParams& t, const LinearRibbon& kv) {
       fmt::format("cross-coupled stiffness of TDB {}'s ribbon opposing the outer race's whirl "
                   "(Jarroux 2016 Eq. (1)), eta fitted",
                   t.name),
-      {"cross_coupling", 0.0, 2.0, {0.1, 0.5, 1.0}}, 1.0, [kv](double eta) {
+      {{"cross_coupling", 0.0, 2.0, {0.1, 0.5, 1.0}}}, {1.0}, [kv](const std::vector<double>& v) {
+        const double eta = v[0];
         const std::string cc = kv.table + "cross_coupled.";
         return std::vector<std::string>{SetText(kv.table + "ribbon", "cross_coupled"),
                                         Set(cc + "stiffness_N_per_m", kv.stiffness_N_per_m),
@@ -738,10 +784,11 @@ std::vector<Effect> EffectLibrary(const ConfigVariants& variants, bool only_fami
   AddRaceSpinEffects(config, &effects);
   AddCoastDownEffects(declared, &effects);
   // Ribbon laws replace a declared linear ribbon (issue 15: the contact-law TDB's too).
+  const double share_N = RotorWeightN(declared) / static_cast<double>(declared.tdbs.size());
   for (const TdbParams& t : declared.tdbs) {
     const std::optional<LinearRibbon> ribbon = LinearRibbonOf(t);
     if (!ribbon) continue;
-    effects.push_back(RibbonDryFriction(t, *ribbon));
+    effects.push_back(RibbonDryFriction(t, *ribbon, share_N));
     effects.push_back(RibbonCrossCoupling(t, *ribbon));
   }
   if (only_families) return effects;

@@ -26,6 +26,9 @@ struct EffectParameter {
   /// A size that spans decades from 0 (an unbalance): "a small change" is a thousandth of its
   /// value, not of its range, which can be as large as the value itself.
   bool magnitude = false;
+  /// A positive size known only to its decade (a ribbon's slipping stiffness): searched
+  /// evenly in its logarithm between the bounds, which must then be positive.
+  bool log_scale = false;
 };
 
 struct Effect {

@@ -220,9 +220,10 @@ double ModelFloorAfter(const ConfigVariants& declared, const RecordCost& cost,
       if (p.quantum > 0.0) continue;  // steps between whole samples: not a small change
       std::vector<std::vector<double>> v = f.values;
       const double range = p.upper - p.lower;
-      const double step = p.periodic    ? 1e-3
-                          : p.magnitude ? 1e-3 * std::max(std::abs(v[e][i]), 1e-3 * range)
-                                        : 1e-3 * range;
+      const double step = p.periodic ? 1e-3
+                          : p.magnitude || p.log_scale
+                              ? 1e-3 * std::max(std::abs(v[e][i]), 1e-3 * range)
+                              : 1e-3 * range;
       v[e][i] += v[e][i] + step <= p.upper || p.periodic ? step : -step;
       nudged += (ResidualWithEffects(declared, cost, effects, v) - at).squaredNorm();
       ++count;

@@ -127,8 +127,13 @@ ABSOLUTE_TOLERANCE = {
 }
 DEFAULT_ABSOLUTE_TOLERANCE = 1e-9
 SWITCH_LEAVES = {"enabled", "current_law", "model", "ribbon", "law"}
-# Keys that place an effect rather than size it: not compared as values.
-NOT_COMPARED_LEAVES = SWITCH_LEAVES | {"position_m", "mass_kg"}
+# Keys that place an effect rather than size it: not compared as values. The Dahl law's form
+# (beta and the hardening envelopes' a, b, c, d; the threshold's scale) is the fit's own, tied to
+# the three numbers it fits (tools/fit/effect_library.cpp, RibbonDryFriction): its slipping
+# threshold and slipping stiffness are compared, the form as little as a sign's regularisation.
+NOT_COMPARED_LEAVES = SWITCH_LEAVES | {"position_m", "mass_kg", "beta_per_m", "threshold_scale",
+                                       "upper_hardening_N", "upper_hardening_rate_per_m",
+                                       "lower_hardening_N", "lower_hardening_rate_per_m"}
 
 # The fit's effect names -> the --set key patterns they write ("*" = every item).
 EFFECT_NAME_KEYS = {
@@ -145,8 +150,10 @@ EFFECT_NAME_KEYS = {
     "sensor_gain_offset": ["sensor.{}.gain", "sensor.{}.offset_m"],
     "sensor_lag": ["sensor.{}.lag.delay_s", "sensor.{}.lag.cutoff_Hz"],
     "tdb_drag_torque": ["tdb.{}.spin.drag_torque_N_m"],
-    "ribbon_dry_friction": ["tdb.{}.four_dof.dahl.slipping_threshold_N"],
-    "ribbon_cross_coupling": ["tdb.{}.four_dof.cross_coupled.cross_coupling"],
+    "ribbon_dry_friction": ["tdb.{}.four_dof.dahl.slipping_threshold_N",
+                            "tdb.{}.contact_law.dahl.slipping_threshold_N"],
+    "ribbon_cross_coupling": ["tdb.{}.four_dof.cross_coupled.cross_coupling",
+                              "tdb.{}.contact_law.cross_coupled.cross_coupling"],
 }
 # ---------------------------------------------------------------------------------------------
 
