@@ -16,6 +16,7 @@
 
 #include "declared_off.hpp"
 #include "drop_run.hpp"
+#include "effects.hpp"
 #include "firmware_controller.hpp"
 #include "rig.hpp"
 #include "rotor_modes.hpp"
@@ -204,6 +205,44 @@ TEST(TruthFlexibleRig, AMagnetBiasKeepsPullingAfterPowerLoss) {
     }
     EXPECT_GT(pulled, 1.08 * free_fall);  // the two are told apart
   }
+}
+
+// A drop that leaves the physics the generator models is refused, not written: on this rig's
+// magnet-biased AMBs, a soft dry-friction ribbon under the NDE TDB (the battery's draw, seed 13)
+// lets the rotor sink until the magnets pull it to their poles, where the AMB law is clamped
+// and nothing models the strike. The clean drop stays well inside the gap, as its sensors
+// beside the magnets read it, not through the generator's own check.
+TEST(TruthFlexibleRig, ARotorAtTheMagnetsPolesIsNoTdbDrop) {
+  const auto deepest = [](const Rig& rig, RunResult* run) {
+    double fraction = 0.0;  // of the gap, at either sensor (each beside its AMB), either axis
+    *run = RunDrop(rig, 13, Quiet());
+    for (const RecordRow& row : run->rows) {
+      for (int s = 0; s < 2; ++s) {
+        for (int axis = 0; axis < 2; ++axis) {
+          fraction = std::max(fraction, std::abs(row.displacement_m[s][axis]) /
+                                            rig.ambs[static_cast<std::size_t>(s)].nominal_gap_m);
+        }
+      }
+    }
+    return fraction;
+  };
+  Rig clean = RigB();
+  ApplyEffect("clean", 13, &clean);
+  RunResult clean_run;
+  const double clean_depth = deepest(clean, &clean_run);
+  EXPECT_TRUE(clean_run.left_physics.empty()) << clean_run.left_physics;
+  EXPECT_LT(clean_depth, 0.7);  // the TDBs (0.2 mm) hold it well inside the 0.5 mm gap
+
+  Rig soft = RigB();
+  ApplyEffect("dahl_ribbon", 13, &soft);
+  RunResult soft_run;
+  const double soft_depth = deepest(soft, &soft_run);
+  ASSERT_FALSE(soft_run.left_physics.empty());
+  EXPECT_NE(soft_run.left_physics.find("AMB nde's poles"), std::string::npos)
+      << soft_run.left_physics;
+  // The sensors beside the magnets see the rotor reach the poles (and the clamped law lets it
+  // run on, which is why the record is refused).
+  EXPECT_GT(soft_depth, 0.95);
 }
 
 // Every number of the rig file is checked before it becomes a count or a frequency: a mode

@@ -627,6 +627,10 @@ def main():
                     entry(e) in args.only]
             if not plan:
                 raise BatteryError(f"--only {args.only}: no such record or effect kind")
+        # Draws the generator refused (their drop left the physics both simulators model, e.g.
+        # the rotor at an AMB's poles) are listed with its reason and not scored.
+        not_made = [e for e in plan if "not_made" in e]
+        plan = [e for e in plan if "not_made" not in e]
         declared = Declared(args.ambdrop, args.config)
     except BatteryError as e:
         print(f"battery: {e}", file=sys.stderr)
@@ -690,6 +694,8 @@ def main():
     right = sum(r["hit"] for r in rows)
     invented = sum(r["invented"] for r in rows)
     total = f"{right} of {len(rows)} right, {invented} invented"
+    if not_made:
+        total += f"; {len(not_made)} not made"
     if any(r["ceiling"] is not None for r in rows):
         # Records whose true numbers cannot cut the judged residual 3x cannot be right by the
         # cut rule, whatever the fit does; clean and outside records have no ceiling and stay.
@@ -700,6 +706,8 @@ def main():
     for r in rows:
         if not r["hit"]:
             print(f"  miss {r['record']}: {r['note']}; {r['rms']}")
+    for e in not_made:
+        print(f"  not made {e['record']}: {e['not_made']}")
     if args.markdown:
         md = ["| " + " | ".join(c or "result" for c in COLUMNS) + " |",
               "|" + " --- |" * len(COLUMNS)]
@@ -711,6 +719,8 @@ def main():
         for r in rows:
             if not r["hit"]:
                 md.append(f"- miss `{r['record']}`: {r['note']}; overall {r['rms']}.")
+        for e in not_made:
+            md.append(f"- not made `{e['record']}` (not scored): {e['not_made']}.")
         Path(args.markdown).write_text("\n".join(md) + "\n")
     if failures:
         for f in failures:

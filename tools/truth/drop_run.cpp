@@ -5,6 +5,8 @@
 #include <deque>
 #include <numbers>
 
+#include <fmt/core.h>
+
 #include "firmware_controller.hpp"
 #include "noise.hpp"
 #include "pid_axis.hpp"
@@ -335,6 +337,17 @@ RunResult RunDrop(const Rig& rig, std::uint64_t seed, const RunOptions& options)
       row.rotor_speed_rad_s =
           y(L.spin()) + recorded(14, rig.acquisition.speed_noise_rpm / kRpmPerRadPerS);
       result.rows.push_back(row);
+      for (int a = 0; a < 2 && result.left_physics.empty(); ++a) {
+        const double gap_m = rig.ambs[a].nominal_gap_m;
+        const std::array<double, 2>& u = outputs.amb_displacement_m[a];
+        if (std::max(std::abs(u[0]), std::abs(u[1])) > kAmbLawGapFraction * gap_m) {
+          result.left_physics = fmt::format(
+              "the rotor reached AMB {}'s poles at {:.4f} s ({:.0f} um on x, {:.0f} um on y; air "
+              "gap {:.0f} um): its law holds only inside the gap and no pole strike is modelled, "
+              "so this is no drop onto the TDBs",
+              rig.ambs[a].name, t, 1e6 * u[0], 1e6 * u[1], 1e6 * gap_m);
+        }
+      }
     }
     if (k == total) break;
     plant.Step(&y, input);

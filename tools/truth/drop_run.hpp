@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "plant.hpp"
@@ -41,6 +42,10 @@ struct RunOptions {
 struct RunResult {
   std::vector<RecordRow> rows;
   bool finite = true;
+  /// Empty, or where the rotor left the physics the generator models: it reached an AMB's
+  /// poles (the magnet law holds inside the air gap; nothing models a pole strike), so the
+  /// record is no drop onto the TDBs.
+  std::string left_physics;
 };
 
 RunResult RunDrop(const Rig& rig, std::uint64_t seed, const RunOptions& options = {});

@@ -9,7 +9,7 @@ namespace ambdrop_truth {
 double AmbAxisForce(const AmbRig& a, double coil_plus_A, double coil_minus_A, double u_m) {
   const double g0 = a.nominal_gap_m;
   // The TDBs stop the rotor long before the poles; the law is singular there.
-  const double u = std::clamp(u_m, -0.95 * g0, 0.95 * g0);
+  const double u = std::clamp(u_m, -kAmbLawGapFraction * g0, kAmbLawGapFraction * g0);
   const double k = a.electromagnet_constant_N_m2_per_A2;
   return k * (coil_plus_A * coil_plus_A / ((g0 - u) * (g0 - u)) -
               coil_minus_A * coil_minus_A / ((g0 + u) * (g0 + u)));
@@ -88,6 +88,7 @@ void Plant::Derivative(const PlantState& y, const PlantInput& in, PlantState* ra
         (*rate)(L.coil(a, axis)) = di;
       }
       out->amb_force_N[a][axis] = AmbAxisForce(amb, plus, minus, u[axis]);
+      out->amb_displacement_m[a][axis] = u[axis];
     }
     apply(amb.position_m, out->amb_force_N[a][0], out->amb_force_N[a][1]);
   }

@@ -62,6 +62,7 @@ struct PlantOutputs {
   std::array<ContactForces, 2> tdb{};
   std::array<std::array<double, 2>, 2> amb_force_N{};
   std::array<std::array<double, 2>, 2> sensor_displacement_m{};  ///< true, before the lag
+  std::array<std::array<double, 2>, 2> amb_displacement_m{};     ///< [amb][axis], the rotor
   /// The force each TDB puts on its ground along +x, +y (N): the contact's reaction, or with
   /// the 4-DOF mount the ribbon's, its races' weight included (a load cell reads it tared).
   std::array<std::array<double, 2>, 2> support_N{};
@@ -102,6 +103,10 @@ class Plant {
 };
 
 /// AMB force along +u of one axis for its two coil currents (seed 003 Eq. (2)).
+/// The fraction of an AMB's air gap beyond which AmbAxisForce clamps the rotor's displacement:
+/// the law is singular at the poles, and nothing models a pole strike.
+inline constexpr double kAmbLawGapFraction = 0.95;
+
 double AmbAxisForce(const AmbRig& a, double coil_plus_A, double coil_minus_A, double u_m);
 
 }  // namespace ambdrop_truth

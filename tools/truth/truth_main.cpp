@@ -57,6 +57,11 @@ void Usage() {
       stderr);
 }
 
+/// A record the generator refuses: its run left the physics it models.
+struct OutsidePhysics : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 /// Makes one record in `dir`, and its blind copy in `blind_dir`; returns the seconds taken.
 double MakeRecord(const Args& args, const std::string& effect, std::uint64_t seed,
                   const fs::path& dir, const fs::path& blind_dir) {
@@ -71,6 +76,7 @@ double MakeRecord(const Args& args, const std::string& effect, std::uint64_t see
   if (!args.noise) actual.acquisition.sensor_quantisation_m = 0.0;
   const RunResult run = RunDrop(actual, seed, options);
   if (!run.finite) throw std::runtime_error(effect + ": the run diverged");
+  if (!run.left_physics.empty()) throw OutsidePhysics(effect + ": " + run.left_physics);
   fs::create_directories(dir);
   fs::create_directories(blind_dir);
   for (const fs::path& d : {dir, blind_dir}) {
@@ -200,10 +206,25 @@ int main(int argc, char** argv) {
       std::uint64_t h = plan[i].second * 0x9e3779b97f4a7c15ULL + i;
       const std::string blind = fmt::format("record_{:06x}", SplitMix64(&h) & 0xffffff);
       const std::string name = fmt::format("{:02}_{}_s{}", i, plan[i].first, plan[i].second);
-      total_s +=
-          MakeRecord(args, plan[i].first, plan[i].second, root / name, root / "blind" / blind);
-      index += fmt::format("  {{\"record\": \"{}\", \"blind\": \"blind/{}\"}}{}\n", name, blind,
-                           i + 1 < plan.size() ? "," : "");
+      // A draw whose drop leaves the modelled physics is listed, not made: the battery
+      // reports it and scores the others.
+      std::string not_made;
+      try {
+        total_s +=
+            MakeRecord(args, plan[i].first, plan[i].second, root / name, root / "blind" / blind);
+      } catch (const OutsidePhysics& e) {
+        for (const char c : std::string(e.what())) {
+          if (c == '"' || c == '\\') not_made += '\\';
+          not_made += c;
+        }
+        fmt::print("{:<24} seed {:<4} not made: {}\n", plan[i].first, plan[i].second, not_made);
+      }
+      const std::string tail = i + 1 < plan.size() ? "," : "";
+      index += not_made.empty()
+                   ? fmt::format("  {{\"record\": \"{}\", \"blind\": \"blind/{}\"}}{}\n", name,
+                                 blind, tail)
+                   : fmt::format("  {{\"record\": \"{}\", \"not_made\": \"{}\"}}{}\n", name,
+                                 not_made, tail);
     }
     index += "]\n";
     std::FILE* f = std::fopen((root / "battery.json").c_str(), "w");
