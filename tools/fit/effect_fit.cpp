@@ -379,7 +379,10 @@ EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
     }
   }
   // Parameters the record does not move (a bound, a delay between samples) are left out of
-  // the covariance rather than making it singular.
+  // the covariance rather than making it singular. It is inverted in the search variables,
+  // where every column is of the same order (a stiffness in N/m beside a travel in m would
+  // leave the normal matrix unconditioned to the LU's rank test), and carried to the
+  // parameters' units by their slopes.
   std::vector<Eigen::Index> live;
   for (Eigen::Index i = 0; i < n; ++i) {
     if (!at_bound[static_cast<std::size_t>(i)] && jp.col(i).norm() > 0.0) live.push_back(i);
@@ -389,14 +392,20 @@ EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
   Eigen::MatrixXd cov = Eigen::MatrixXd::Constant(n, n, kNaN);
   if (!live.empty()) {
     const Eigen::Index m = static_cast<Eigen::Index>(live.size());
-    Eigen::MatrixXd jl(jp.rows(), m);
-    for (Eigen::Index k = 0; k < m; ++k) jl.col(k) = jp.col(live[static_cast<std::size_t>(k)]);
+    Eigen::MatrixXd jl(jz.rows(), m);
+    Eigen::VectorXd slope(m);
+    for (Eigen::Index k = 0; k < m; ++k) {
+      const Eigen::Index i = live[static_cast<std::size_t>(k)];
+      jl.col(k) = jz.col(i);
+      slope(k) = Slope(*flat[static_cast<std::size_t>(i)].parameter, best_z(i));
+    }
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(jl.transpose() * jl);
     if (lu.isInvertible()) {
       const Eigen::MatrixXd c = lu.inverse() * (fit.sse / dof);
       for (Eigen::Index a = 0; a < m; ++a) {
         for (Eigen::Index b = 0; b < m; ++b) {
-          cov(live[static_cast<std::size_t>(a)], live[static_cast<std::size_t>(b)]) = c(a, b);
+          cov(live[static_cast<std::size_t>(a)], live[static_cast<std::size_t>(b)]) =
+              c(a, b) * slope(a) * slope(b);
         }
       }
     }
