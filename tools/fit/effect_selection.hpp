@@ -163,6 +163,8 @@ struct Selection {
   EffectFit chosen_fit;  ///< their parameters
   /// With the verdict `unexplained`: the effects that would have been chosen had they cut the
   /// error by SelectionRules::explained_cut, and the residual they leave (else empty, NaN).
+  /// With `no_effect_needed` and `unconfirmed_departure`: the effects that took the departure
+  /// after the start within its limit, by a model too chaotic for the record to confirm.
   std::vector<std::string> closest;
   double closest_rms = std::numeric_limits<double>::quiet_NaN();
   double rms_after = 0.0;
@@ -172,6 +174,11 @@ struct Selection {
   /// the declared model with its rotor's jitter at the trigger drawn (jitter_draws.hpp);
   /// `ran` false otherwise.
   JitterDraws jitter;
+  /// The declared model agrees with the drop's start and departs after it; only models too
+  /// chaotic for the record to confirm removed the departure, so no effect is confirmed and
+  /// the departure is the declared model's (the verdict is `no_effect_needed`, the report
+  /// describes the discrepancy).
+  bool unconfirmed_departure = false;
   /// measurement.trigger_state = "record": what the lead window's fit of the declared model
   /// did, or why it kept the model's own state (LeadStateFit::note); "" otherwise.
   std::string trigger_state;

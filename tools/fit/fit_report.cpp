@@ -257,6 +257,7 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     json.Key("rms_after").Number(s.closest_rms);
     json.EndObject();
   }
+  json.Key("unconfirmed_departure").Bool(s.unconfirmed_departure);
   json.Key("decidable_candidates").Integer(s.decidable_candidates);
   json.Key("candidates").BeginArray();
   for (const CandidateScore& c : s.candidates) {

@@ -119,7 +119,8 @@ Discrepancy DescribeDiscrepancy(const ModelParams& params, const MeasurementPara
                                 const MeasuredRecord& r, const SimulatedRecord& model,
                                 const ResidualReport& residual, const Selection& selection) {
   Discrepancy d;
-  d.dominant = selection.verdict == "unexplained" || selection.verdict == "partly_explained";
+  d.dominant = selection.verdict == "unexplained" || selection.verdict == "partly_explained" ||
+               selection.unconfirmed_departure;
   std::size_t best = m.channels.size();
   for (std::size_t c = 0; c < residual.channels.size() && c < m.channels.size(); ++c) {
     const double share = residual.channels[c].cost_share;
