@@ -285,6 +285,7 @@ int FitOneRecord(const FitOptions& options, const std::string& measured_path,
   fit_options.rules.threads = options.threads;
   fit_options.rules.max_runs_per_start = options.max_runs_per_start;
   fit_options.rules.tolerance = options.tolerance;
+  fit_options.rules.jitter_draws = options.jitter_draws;
   fit_options.choose_step = !options.declared_step;
   std::unique_ptr<FitResult> fit;
   try {
@@ -483,6 +484,13 @@ RegisteredCommand AddFitCommand(CLI::App& app) {
                    "in quadrature to the limit the record's noise and the model's sensitivity "
                    "set (0: the record alone decides)")
       ->check(kFinite & CLI::NonNegativeNumber)
+      ->capture_default_str();
+  fit_command
+      ->add_option("--jitter-draws", options->jitter_draws,
+                   "Where the declared model agrees with the drop's start and departs after "
+                   "it: this many runs of it with its rotor's jitter at the trigger drawn, "
+                   "before any effect is taken for the departure (0: none)")
+      ->check(CLI::Range(0, 64))
       ->capture_default_str();
   fit_command->add_flag("--declared-step", options->declared_step,
                         "Run every model at the config's step (default: up to 4x coarser "

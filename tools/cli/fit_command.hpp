@@ -15,6 +15,9 @@ struct FitOptions {
   int threads = 2;
   int max_runs_per_start = 40;
   double tolerance = 0.0;  ///< relative RMS within which model and record agree anyway
+  /// Runs of the declared model with its rotor's jitter drawn (tools/fit/jitter_draws.hpp);
+  /// 0: none.
+  int jitter_draws = 16;
   bool quiet = false;
   /// Every run at the config's step (tools/fit/fit_step.hpp: otherwise the fit may coarsen it).
   bool declared_step = false;

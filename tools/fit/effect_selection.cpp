@@ -1160,7 +1160,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
     for (const std::string& name : s.chosen) instead += (instead.empty() ? "" : " + ") + name;
     s.reason = fmt::format(
         "the declared model agrees with the drop's start ({:.3g}, limit {:.3g}) and departs "
-        "after it ({:.3g}, limit {:.3g}); {} took that within {:.3g}, but the model it makes is "
+        "after it ({:.3g}, limit {:.3g}); {} took that to {:.3g}, but the model it makes is "
         "chaotic (its own prediction moves by {:.3g} as the step is halved or a parameter "
         "nudged), so the record cannot confirm it or any effect: no effect is needed, and the "
         "departure is the declared model's (its form, or the record's own start){}",
