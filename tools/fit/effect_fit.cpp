@@ -367,16 +367,11 @@ EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
   at.df(best_z, jz);
   fit.evaluations += at.runs;
   const Eigen::Index n = static_cast<Eigen::Index>(flat.size());
-  Eigen::MatrixXd jp = jz;
+  Eigen::VectorXd slopes(n);
   std::vector<bool> at_bound(flat.size(), false);
   for (Eigen::Index i = 0; i < n; ++i) {
-    const double slope = Slope(*flat[static_cast<std::size_t>(i)].parameter, best_z(i));
-    if (std::abs(slope) < 1e-9) {
-      at_bound[static_cast<std::size_t>(i)] = true;
-      jp.col(i).setZero();
-    } else {
-      jp.col(i) /= slope;
-    }
+    slopes(i) = Slope(*flat[static_cast<std::size_t>(i)].parameter, best_z(i));
+    at_bound[static_cast<std::size_t>(i)] = std::abs(slopes(i)) < 1e-9;
   }
   // Parameters the record does not move (a bound, a delay between samples) are left out of
   // the covariance rather than making it singular. It is inverted in the search variables,
@@ -385,7 +380,7 @@ EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
   // parameters' units by their slopes.
   std::vector<Eigen::Index> live;
   for (Eigen::Index i = 0; i < n; ++i) {
-    if (!at_bound[static_cast<std::size_t>(i)] && jp.col(i).norm() > 0.0) live.push_back(i);
+    if (!at_bound[static_cast<std::size_t>(i)] && jz.col(i).norm() > 0.0) live.push_back(i);
   }
   const double dof =
       std::max<double>(1.0, static_cast<double>(cost.size()) - static_cast<double>(n));
@@ -397,7 +392,7 @@ EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
     for (Eigen::Index k = 0; k < m; ++k) {
       const Eigen::Index i = live[static_cast<std::size_t>(k)];
       jl.col(k) = jz.col(i);
-      slope(k) = Slope(*flat[static_cast<std::size_t>(i)].parameter, best_z(i));
+      slope(k) = slopes(i);
     }
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(jl.transpose() * jl);
     if (lu.isInvertible()) {
