@@ -10,6 +10,7 @@
 
 #include "tools/fit/effect_fit.hpp"
 #include "tools/fit/jitter_draws.hpp"
+#include "tools/fit/start_state_shift.hpp"
 
 namespace ambdrop {
 
@@ -179,6 +180,13 @@ struct Selection {
   /// the departure is the declared model's (the verdict is `no_effect_needed`, the report
   /// describes the discrepancy).
   bool unconfirmed_departure = false;
+  /// measurement.trigger_state = "record" and the drop's start departs: the declared model
+  /// with the state at the trigger shifted within the estimate's own uncertainty
+  /// (start_state_shift.hpp; `fitted` false where not tried). Where that shift is of plausible
+  /// size and takes the start within the record's noise, no effect is needed
+  /// (`start_within_state_uncertainty`), and the effects that took the departure are `closest`.
+  StartStateShift start_shift;
+  bool start_within_state_uncertainty = false;
   /// measurement.trigger_state = "record": what the lead window's fit of the declared model
   /// did, or why it kept the model's own state (LeadStateFit::note); "" otherwise.
   std::string trigger_state;

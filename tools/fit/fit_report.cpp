@@ -258,6 +258,21 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     json.EndObject();
   }
   json.Key("unconfirmed_departure").Bool(s.unconfirmed_departure);
+  json.Key("start_within_state_uncertainty").Bool(s.start_within_state_uncertainty);
+  if (s.start_shift.fitted) {
+    // The declared model with the state at the trigger shifted within its estimate's
+    // uncertainty, on the drop's start (start_state_shift.hpp).
+    json.Key("start_state_shift").BeginObject();
+    const StartStateShift& shift = s.start_shift;
+    for (const auto& [key, value] :
+         {std::pair{"sigmas", shift.sigmas}, std::pair{"plausible_sigmas", shift.plausible_sigmas},
+          std::pair{"directions", shift.directions}, std::pair{"rms_before", shift.rms_before},
+          std::pair{"rms_after", shift.rms_after}}) {
+      json.Key(key).Number(value);
+    }
+    json.Key("runs").Integer(s.start_shift.runs);
+    json.EndObject();
+  }
   json.Key("decidable_candidates").Integer(s.decidable_candidates);
   json.Key("candidates").BeginArray();
   for (const CandidateScore& c : s.candidates) {
