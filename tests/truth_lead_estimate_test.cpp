@@ -46,9 +46,10 @@ double EarlyDropError(std::uint64_t seed) {
   const SimulatedRecord seated = SimulateOnRecord(config.params, m, record, {});
   EXPECT_EQ(seated.failure, "");
   EXPECT_NE(seated.lead_fit.rfind("not fitted", 0), 0u) << seated.lead_fit;
-  // The estimate's uncertainty is probed along every principal axis of its covariance (the
-  // sensors alone see at least three).
-  EXPECT_GE(seated.lead_uncertainty.size(), 3u);
+  // The estimate's uncertainty: its three largest axes where the sensors see it, and every
+  // principal axis of it (at least those three).
+  EXPECT_EQ(seated.lead_uncertainty.size(), 3u);
+  EXPECT_GE(seated.lead_uncertainty_all.size(), 3u);
 
   const double trigger = seated.trigger_time_s;
   double sum = 0.0, travel = 0.0;

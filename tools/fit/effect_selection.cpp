@@ -111,12 +111,14 @@ double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
     }
   }
   // A state fitted to a lead window of the record (measurement.trigger_state) is as uncertain
-  // as that fit's covariance says: probes either way along each of its principal axes (all of
-  // them: trigger_state_probes.hpp), and along each held current's, whose moves add in
-  // quadrature (the errors along them are independent).
+  // as that fit's covariance says: probes either way along its largest principal axes where the
+  // sensors see them (the spread of most records: trigger_state_probes.hpp; a record whose
+  // noise drew it further off is the state shift's, start_state_shift.hpp), and along each held
+  // current's, whose moves add in quadrature (the errors along them are independent).
   const std::vector<RecordRunOptions> axes =
       m.trigger_state_from_record
-          ? TriggerStateProbes(cost, SimulateOnRecord(params, m, r, cost.run_options()))
+          ? TriggerStateProbes(cost, SimulateOnRecord(params, m, r, cost.run_options()),
+                               TriggerStateAxes::kSeen)
           : std::vector<RecordRunOptions>();
   std::vector<double> moved(variants.size() + starts.size() + axes.size(), 0.0);
   ParallelFor(moved.size(), threads, [&](std::size_t i) {
@@ -135,14 +137,10 @@ double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
   for (std::size_t i = 0; i < variants.size() + starts.size(); ++i) {
     worst = std::max(worst, moved[i]);
   }
-  // Each axis's second moment from its two probes, scaled to one standard deviation (as sigma
-  // points take it; the larger of the two, summed over two dozen axes, counts every curvature
-  // as spread).
   double along_axes = 0.0;
   for (std::size_t k = 0; k + 1 < axes.size(); k += 2) {
     const std::size_t i = variants.size() + starts.size() + k;
-    along_axes += 0.5 * (moved[i] * moved[i] + moved[i + 1] * moved[i + 1]) /
-                  (kTriggerStateProbeSigmas * kTriggerStateProbeSigmas);
+    along_axes += std::pow(std::max(moved[i], moved[i + 1]), 2);
   }
   return std::max(worst, std::sqrt(along_axes));
 }
@@ -1218,11 +1216,12 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   }
   // A start that departs where the state at the trigger is an estimate: before the departure
   // is evidence, the declared model gets the state its estimate allows best. The estimate's
-  // error grows as the power loss leaves the rotor unstable: on the flexible rig's clean seed 8
-  // the start departed by 0.046 against a one-sigma spread of 0.014 (its exact copy by
-  // 0.0008), and a DE sensor 16 mm off was named; a shift of 3.9 standard deviations took it to
-  // 0.0038, within its noise (0.0048). On that rig's battery no record with an effect came
-  // within its noise so (a TDB 60 um off: 164 sigma and 0.031; a sensor gain: 26 sigma).
+  // error grows as the power loss leaves the rotor unstable, and a record's noise can draw it
+  // off far beyond the bulk's spread: on the flexible rig's clean seed 8 the start departed by
+  // 0.046, 7.4 times the start sensitivity (its exact copy by 0.0008), and a DE sensor 16 mm off
+  // was named; a shift of 3.9 standard deviations took it to 0.0038, within its noise (0.0048). On
+  // that rig's battery no record with an effect came within its noise so (a TDB 60 um off: 166
+  // sigma and 0.032; a sensor gain: 26 sigma).
   if (on == "early" && early_cost && s.verdict != "no_effect_needed" &&
       cost.measurement().trigger_state_from_record) {
     s.start_shift = FitStartStateShift(*early_cost, early_before, rules.threads);

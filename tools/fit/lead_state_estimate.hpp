@@ -42,9 +42,12 @@ struct LeadStateFit {
   /// unstable plant open loop for milliseconds, moves the state at the trigger by more than the
   /// displacement samples' noise does; the window's samples say how.
   std::shared_ptr<const LeadCurrentCorrection> current_correction;
-  /// One standard deviation of the state at the trigger (2n) along each principal axis of its
-  /// covariance scaled to unit variances: together they span all of it.
+  /// One standard deviation of the state at the trigger (2n) along each of the (at most three)
+  /// principal axes of its covariance where the sensors see it: the start sensitivity's.
   std::vector<Eigen::VectorXd> uncertainty;
+  /// ... and along every principal axis of its covariance scaled to unit variances: together
+  /// they span all of it (the start's shift within it, start_state_shift.hpp).
+  std::vector<Eigen::VectorXd> uncertainty_all;
   /// What was fitted ("N samples of M displacement channels over L ms, K directions"), or why
   /// nothing was and the model's own state was kept ("not fitted: ..."): the fit reports it,
   /// since a start left unfitted changes what the residual means.

@@ -351,6 +351,7 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
     at.y.head(2 * n) += fit.correction;
     if (fit.current_correction) correction = fit.current_correction;
     out.lead_uncertainty = fit.uncertainty;
+    out.lead_uncertainty_all = fit.uncertainty_all;
     out.lead_fit = fit.note;
   };
   if (controlled) {

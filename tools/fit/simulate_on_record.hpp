@@ -99,8 +99,10 @@ struct SimulatedRecord {
   StepStatus status = StepStatus::kOk;
   std::string failure;  ///< why the run stopped early, with a state dump; "" if it did not
   /// measurement.trigger_state = "record": one standard deviation of the estimated state at
-  /// the trigger along each principal axis of its scaled covariance (lead_state_estimate.hpp).
+  /// the trigger along each of its (at most three) principal axes where the sensors see it,
+  /// and along every principal axis of its scaled covariance (lead_state_estimate.hpp).
   std::vector<Eigen::VectorXd> lead_uncertainty;
+  std::vector<Eigen::VectorXd> lead_uncertainty_all;
   /// The standard error of the current each AMB axis held when the power failed, where the
   /// declared law was fitted to the coil current's samples after the trigger (else 0).
   std::array<std::array<double, 2>, kMaxAmbs> held_current_sd_A{};

@@ -25,12 +25,11 @@ RecordRunOptions Shifted(const RecordCost& cost, const std::vector<RecordRunOpti
       if (o.trigger_state_shift.size() == 0) {
         o.trigger_state_shift = Eigen::VectorXd::Zero(plus.trigger_state_shift.size());
       }
-      o.trigger_state_shift += z(k) / kTriggerStateProbeSigmas * plus.trigger_state_shift;
+      o.trigger_state_shift += z(k) * plus.trigger_state_shift;
     }
     for (std::size_t a = 0; a < kMaxAmbs; ++a) {
       for (std::size_t axis = 0; axis < 2; ++axis) {
-        o.held_current_shift_A[a][axis] +=
-            z(k) / kTriggerStateProbeSigmas * plus.held_current_shift_A[a][axis];
+        o.held_current_shift_A[a][axis] += z(k) * plus.held_current_shift_A[a][axis];
       }
     }
   }
@@ -55,7 +54,8 @@ StartStateShift FitStartStateShift(const RecordCost& cost, const Eigen::VectorXd
   out.rms_after = out.rms_before;
   if (!cost.measurement().trigger_state_from_record || cost.size() == 0) return out;
   const SimulatedRecord base = cost.Simulate(cost.declared());
-  const std::vector<RecordRunOptions> probes = TriggerStateProbes(cost, base);
+  const std::vector<RecordRunOptions> probes =
+      TriggerStateProbes(cost, base, TriggerStateAxes::kAll);
   const Eigen::Index k = static_cast<Eigen::Index>(probes.size() / 2);
   if (k == 0) return out;
   std::vector<Eigen::VectorXd> moved(probes.size());
@@ -68,7 +68,7 @@ StartStateShift FitStartStateShift(const RecordCost& cost, const Eigen::VectorXd
   Eigen::MatrixXd jacobian(m, k);
   for (Eigen::Index j = 0; j < k; ++j) {
     const std::size_t i = static_cast<std::size_t>(2 * j);
-    jacobian.col(j) = (moved[i] - moved[i + 1]) / (2.0 * kTriggerStateProbeSigmas);
+    jacobian.col(j) = 0.5 * (moved[i] - moved[i + 1]);
   }
   if (!jacobian.allFinite() || !residual_before.allFinite()) return out;
   // The samples' variance: the record's noise floor spread over the cost's entries (OverallRms

@@ -5,13 +5,15 @@
 namespace ambdrop {
 
 std::vector<RecordRunOptions> TriggerStateProbes(const RecordCost& cost,
-                                                 const SimulatedRecord& base) {
+                                                 const SimulatedRecord& base,
+                                                 TriggerStateAxes axes) {
   std::vector<RecordRunOptions> probes;
   if (!cost.measurement().trigger_state_from_record) return probes;
-  for (const Eigen::VectorXd& axis : base.lead_uncertainty) {
+  for (const Eigen::VectorXd& axis :
+       axes == TriggerStateAxes::kAll ? base.lead_uncertainty_all : base.lead_uncertainty) {
     for (const double sign : {1.0, -1.0}) {
       RecordRunOptions o = cost.run_options();
-      o.trigger_state_shift = sign * kTriggerStateProbeSigmas * axis;
+      o.trigger_state_shift = sign * axis;
       probes.push_back(o);
     }
   }
@@ -23,7 +25,7 @@ std::vector<RecordRunOptions> TriggerStateProbes(const RecordCost& cost,
       if (!(sd > 0.0)) continue;
       for (const double sign : {1.0, -1.0}) {
         RecordRunOptions o = cost.run_options();
-        o.held_current_shift_A[a][axis] = sign * kTriggerStateProbeSigmas * sd;
+        o.held_current_shift_A[a][axis] = sign * sd;
         probes.push_back(o);
       }
     }

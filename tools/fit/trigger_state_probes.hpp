@@ -10,16 +10,18 @@
 
 namespace ambdrop {
 
-/// How far each probe goes, in standard deviations: half of one. The moves it makes are scaled
-/// back to one (the start is nearly linear there: on the flexible rig's clean seed 8 probes of
-/// one standard deviation and of half of one predicted the same spread within 5 %).
-inline constexpr double kTriggerStateProbeSigmas = 0.5;
+/// Which axes of the estimate's covariance the probes take.
+enum class TriggerStateAxes {
+  kSeen,  ///< the (at most three) largest where the sensors see them: the bulk's spread
+  kAll,   ///< every one: what a shift of the state may use
+};
 
-/// The probes, in pairs (+ then - kTriggerStateProbeSigmas standard deviations): along each
-/// principal axis of the lead window's estimate (SimulatedRecord::lead_uncertainty of `base`,
-/// the declared model's run) and each held current's standard error. Empty unless
+/// The probes, in pairs (+ then - one standard deviation): along the
+/// lead window's estimate's axes (SimulatedRecord::lead_uncertainty or lead_uncertainty_all of
+/// `base`, the declared model's run) and each held current's standard error. Empty unless
 /// measurement.trigger_state = "record".
 std::vector<RecordRunOptions> TriggerStateProbes(const RecordCost& cost,
-                                                 const SimulatedRecord& base);
+                                                 const SimulatedRecord& base,
+                                                 TriggerStateAxes axes);
 
 }  // namespace ambdrop
