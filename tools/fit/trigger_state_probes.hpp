@@ -1,8 +1,9 @@
 #pragma once
 // measurement.trigger_state = "record": the state at the trigger is an estimate (the lead
 // window's fit, lead_state_estimate.hpp), and a rotor that the power loss leaves unstable goes
-// where its error sends it. The start sensitivity runs the declared model along that estimate's
-// uncertainty: these are its probes.
+// where its error sends it. The start sensitivity (effect_selection.hpp) and the state shift
+// (start_state_shift.hpp) run the declared model along that estimate's uncertainty: these are
+// their probes.
 #include <vector>
 
 #include "tools/fit/record_cost.hpp"
@@ -16,10 +17,10 @@ enum class TriggerStateAxes {
   kAll,   ///< every one: what a shift of the state may use
 };
 
-/// The probes, in pairs (+ then - one standard deviation): along the
-/// lead window's estimate's axes (SimulatedRecord::lead_uncertainty or lead_uncertainty_all of
-/// `base`, the declared model's run) and each held current's standard error. Empty unless
-/// measurement.trigger_state = "record".
+/// The probes, in pairs (+ then - one standard deviation): along the lead window's estimate's
+/// axes (SimulatedRecord::lead_uncertainty or lead_uncertainty_all of `base`, the declared
+/// model's run) and each held current's standard error. Empty unless measurement.trigger_state
+/// = "record".
 std::vector<RecordRunOptions> TriggerStateProbes(const RecordCost& cost,
                                                  const SimulatedRecord& base,
                                                  TriggerStateAxes axes);
