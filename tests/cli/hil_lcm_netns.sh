@@ -27,6 +27,9 @@ unshare -n bash -c "
   # A monitor: LCM's own logger on the live state and power channels.
   lcm-logger -q -f -c 'AMBDROP_(STATE|POWER|PLANT)' '$work/live.lcm' &
   logger=\$!
+  # A failed run leaves this shell at once (set -e): the logger, still holding the test's
+  # output, would keep ctest waiting for it (887 s once) after the failure was reported.
+  trap 'kill -KILL \$logger 2>/dev/null || true' EXIT
   sleep 0.5
   '$tool' hil '$config' --controller lcm ${sets[*]} --set simulation.duration_s=0.4 \
     --rt-priority 80 --lcm-io-fifo --out '$work/out' --record '$work/run.lcm' --quiet
