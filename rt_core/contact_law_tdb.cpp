@@ -67,25 +67,54 @@ SeriesSolution SolveSeries(const TdbParams& p, const JournalMotion& j, const Con
   return s;
 }
 
+bool HasRaceMass(const ContactLawParams& c) {
+  return c.ribbon != ContactLawRibbon::kBilinear && c.outer_race_mass_kg > 0.0;
+}
+
 }  // namespace
 
 ContactLawTdb::ContactLawTdb(const TdbParams& params)
-    : TouchdownBearing(params), state_size_(StatesOf(params.contact_law().ribbon)) {
+    : TouchdownBearing(params),
+      race_velocity_index_(StatesOf(params.contact_law().ribbon)),
+      state_size_(race_velocity_index_ + (HasRaceMass(params.contact_law()) ? 2 : 0)) {
   const ContactLawParams& c = params.contact_law();
-  if ((c.ribbon == ContactLawRibbon::kDahl && !(c.ribbon_damping_N_s_per_m > 0.0)) ||
-      (c.ribbon == ContactLawRibbon::kCrossCoupled && !(c.cross_coupled.damping_N_s_per_m > 0.0))) {
+  if (!HasRaceMass(c) &&
+      ((c.ribbon == ContactLawRibbon::kDahl && !(c.ribbon_damping_N_s_per_m > 0.0)) ||
+       (c.ribbon == ContactLawRibbon::kCrossCoupled &&
+        !(c.cross_coupled.damping_N_s_per_m > 0.0)))) {
     throw std::invalid_argument("tdb '" + params.name +
                                 "': a ribbon in series with the contact needs a positive damping "
                                 "(its race is massless)");
+  }
+  if (c.ribbon == ContactLawRibbon::kCrossCoupled && HasRaceMass(c) &&
+      !(c.cross_coupled.stiffness_N_per_m > 0.0)) {
+    throw std::invalid_argument("tdb '" + params.name +
+                                "': the cross-coupled ribbon under a race with mass needs a "
+                                "positive stiffness (it carries the race's weight)");
   }
 }
 
 void ContactLawTdb::InitialState(double* state) const noexcept {
   std::fill(state, state + state_size_, 0.0);
+  const ContactLawParams& c = params_.contact_law();
+  if (!HasRaceMass(c)) return;
+  // The race's weight rests on the ribbon, as the 4-DOF TDB's races do.
+  const double weight_N = c.outer_race_mass_kg * c.gravity_y_m_s2;
+  if (c.ribbon == ContactLawRibbon::kDahl) {
+    state[kRibbonFy] =
+        std::clamp(weight_N, DahlLowerEnvelope(c.dahl, 0.0), DahlUpperEnvelope(c.dahl, 0.0));
+  } else {
+    // Jarroux 2016 (seed 001), Eq. (1) at rest: no whirl, so no cross-coupling.
+    state[kRibbonY] = weight_N / c.cross_coupled.stiffness_N_per_m;
+  }
 }
 
 void ContactLawTdb::Evaluate(const JournalMotion& j, const double* state, double* state_rate,
                              TdbForce* out) const noexcept {
+  if (HasRaceMass(params_.contact_law())) {
+    EvaluateRaceWithMass(j, state, state_rate, out);
+    return;
+  }
   if (params_.contact_law().ribbon != ContactLawRibbon::kBilinear) {
     EvaluateInSeries(j, state, state_rate, out);
     return;
@@ -178,6 +207,55 @@ void ContactLawTdb::EvaluateInSeries(const JournalMotion& j, const double* s, do
   out->support_x_N = ribbon_x + damping * solution.vx_m_s;
   out->support_y_N = ribbon_y + damping * solution.vy_m_s;
   rate[kRaceSpin] = RaceAcceleration(p, race_speed, solution.friction_N, solution.normal_N);
+}
+
+void ContactLawTdb::EvaluateRaceWithMass(const JournalMotion& j, const double* s, double* rate,
+                                         TdbForce* out) const noexcept {
+  const TdbParams& p = params_;
+  const ContactLawParams& c = p.contact_law();
+  const int v = race_velocity_index_;
+  const double race_speed = s[kRaceSpin];
+  const double ux = s[kRibbonX], uy = s[kRibbonY], vx = s[v], vy = s[v + 1];
+  const ContactGeometry g = JournalGeometry(p, j, {ux, uy, vx, vy});
+  const double delta = g.radius_m - p.clearance_m;
+
+  *out = TdbForce{};
+  out->penetration_m = delta;
+  out->tdb_spin_rad_s = race_speed;
+  double normal = 0.0, friction = 0.0;
+  if (delta > 0.0) {
+    // Jarroux 2019 Eq. (12), crushed branch, on the moving race; a receding contact cannot pull.
+    normal = std::max(0.0, c.bearing_stiffness_N_per_m * delta +
+                               c.bearing_damping_N_s_per_m * g.radial_speed_m_s);
+    // Jarroux 2019 Eq. (11), slip relative to the race, plus the viscous force on the whirl speed.
+    friction = FrictionForce(p.friction, normal, SurfaceSlip(p, j, g, race_speed));
+    ForceOnRotor(g, normal, -friction - p.friction.whirl_damping_N_s_per_m * g.whirl_speed_m_s,
+                 &out->fx_N, &out->fy_N);
+    out->torque_on_rotor_N_m = -friction * p.journal_radius_m;
+  }
+  out->normal_force_N = normal;
+  out->tangential_force_N = friction;
+
+  double ribbon_x = 0.0, ribbon_y = 0.0;  // what the ribbon puts on the housing; the race feels -
+  if (c.ribbon == ContactLawRibbon::kDahl) {
+    // Jarroux 2019 Eq. (1)-(3), the viscous ceq beside the Dahl element.
+    rate[kRibbonFx] = DahlRibbonForceRate(c.dahl, ux, vx, s[kRibbonFx]);
+    rate[kRibbonFy] = DahlRibbonForceRate(c.dahl, uy, vy, s[kRibbonFy]);
+    ribbon_x = s[kRibbonFx] + c.ribbon_damping_N_s_per_m * vx;
+    ribbon_y = s[kRibbonFy] + c.ribbon_damping_N_s_per_m * vy;
+  } else {
+    // Jarroux 2016 (seed 001), Eq. (1)
+    CrossCoupledRibbonForce(c.cross_coupled, ux, uy, vx, vy, &ribbon_x, &ribbon_y);
+  }
+  // Newton on the race (Jarroux 2019 Sec. 4.1): the journal's reaction, the ribbon, its weight.
+  const double inverse_mass = 1.0 / c.outer_race_mass_kg;
+  rate[kRibbonX] = vx;
+  rate[kRibbonY] = vy;
+  rate[v] = (-out->fx_N - ribbon_x) * inverse_mass;
+  rate[v + 1] = (-out->fy_N - ribbon_y) * inverse_mass + c.gravity_y_m_s2;
+  out->support_x_N = ribbon_x;
+  out->support_y_N = ribbon_y;
+  rate[kRaceSpin] = RaceAcceleration(p, race_speed, friction, normal);
 }
 
 }  // namespace ambdrop

@@ -34,6 +34,16 @@ namespace ambdrop {
 /// cross-coupling (one fixed-point pass: the sign only picks the direction of a bounded force).
 /// States: Omega_tdb, ux, uy (m) and, with the Dahl ribbon, frd_x, frd_y (N); the race starts
 /// centred, the ribbon unloaded (a massless race carries no weight).
+///
+/// A race with mass (contact_law.outer_race_mass_kg = m > 0; Jarroux 2019 model #3's outer race
+/// between bearing and ribbon, here without its inner race; Lahriri's bearing house on its
+/// ring): Newton on the race instead of the balance above,
+///   m u'' = -F_rotor - R(u) - c u' + m g          (Jarroux 2019 Sec. 4.1, outer race)
+/// with the journal's contact on the moving race, fn = max(0, kbrg delta + cbrg (v_j - u')·n)
+/// (Eq. (12), crushed), the slip and whirl speeds of Eq. (11) relative to the race, and the
+/// ribbon's damping c allowed 0. Two more states, the race's velocity (vx, vy) (m/s), after the
+/// others; the race starts at rest with its weight on the ribbon (Dahl: frd_y = m g within the
+/// envelopes; cross-coupled: uy = m g / kcrd).
 class ContactLawTdb final : public TouchdownBearing {
  public:
   enum StateIndex : int {
@@ -47,7 +57,10 @@ class ContactLawTdb final : public TouchdownBearing {
   static constexpr int kStatesCrossCoupled = kRibbonY + 1;
   static constexpr int kStatesDahl = kRibbonFy + 1;
 
-  /// Throws std::invalid_argument when a ribbon in series has no damping.
+  /// Index of the race's velocity x (y follows) when it has mass: after the ribbon's states.
+  int RaceVelocityIndex() const noexcept { return race_velocity_index_; }
+
+  /// Throws std::invalid_argument when a massless race's ribbon in series has no damping.
   explicit ContactLawTdb(const TdbParams& params);
   int StateSize() const noexcept override { return state_size_; }
   void InitialState(double* state) const noexcept override;
@@ -57,6 +70,9 @@ class ContactLawTdb final : public TouchdownBearing {
  private:
   void EvaluateInSeries(const JournalMotion& journal, const double* state, double* state_rate,
                         TdbForce* out) const noexcept;
+  void EvaluateRaceWithMass(const JournalMotion& journal, const double* state, double* state_rate,
+                            TdbForce* out) const noexcept;
+  int race_velocity_index_;
   int state_size_;
 };
 

@@ -11,8 +11,8 @@ namespace ambdrop {
 /// The ribbon of the contact-law TDB (see ContactLawTdb).
 enum class ContactLawRibbon {
   kBilinear,      ///< inside the bilinear law, Jarroux 2019 Eq. (12) (the default)
-  kDahl,          ///< massless race on a generalized Dahl ribbon, Jarroux 2019 Eq. (1)-(3)
-  kCrossCoupled,  ///< massless race on the cross-coupled ribbon, Jarroux 2016 (seed 001) Eq. (1)
+  kDahl,          ///< race on a generalized Dahl ribbon, Jarroux 2019 Eq. (1)-(3)
+  kCrossCoupled,  ///< race on the cross-coupled ribbon, Jarroux 2016 (seed 001) Eq. (1)
 };
 
 /// Contact-law TDB, Jarroux 2019 Eq. (12): ribbon (keq, ceq) until crushed by urd, then the ball
@@ -27,7 +27,11 @@ struct ContactLawParams {
   double ribbon_crushing_m = 0.0;  ///< urd, ribbon crushing capacity; bilinear only
   ContactLawRibbon ribbon = ContactLawRibbon::kBilinear;
   DahlRibbonParams dahl;                   ///< ribbon = kDahl
-  CrossCoupledRibbonParams cross_coupled;  ///< ribbon = kCrossCoupled (its damping > 0)
+  CrossCoupledRibbonParams cross_coupled;  ///< ribbon = kCrossCoupled
+  /// With a ribbon in series: the mass the ribbon carries (the outer race or housing and what
+  /// moves with it, Jarroux 2019 model #3's outer race); 0: a massless race (the default).
+  double outer_race_mass_kg = 0.0;
+  double gravity_y_m_s2 = 0.0;  ///< on that mass, along +y (set from [gravity] at load)
 };
 
 enum class FrictionLaw {

@@ -110,11 +110,11 @@ CrossCoupledRibbonParams ReadCrossCoupled(const TableReader& table) {
 // Jarroux 2019 Eq. (12); with `ribbon` = "dahl" or "cross_coupled" a ribbon law in series with
 // the bearing (ContactLawTdb), read by the 4-DOF TDB's ribbon readers from the table of that
 // name. As there, the selected ribbon's table is required and the other one checked if given.
-ContactLawParams ReadContactLaw(const TableReader& tdb) {
+ContactLawParams ReadContactLaw(const TableReader& tdb, const GravityParams& gravity) {
   const TableReader table = tdb.Table("contact_law");
   table.AllowOnly({"bearing_stiffness_N_per_m", "bearing_damping_N_s_per_m",
                    "ribbon_stiffness_N_per_m", "ribbon_damping_N_s_per_m", "ribbon_crushing_m",
-                   "ribbon", "dahl", "cross_coupled"});
+                   "ribbon", "dahl", "cross_coupled", "outer_race_mass_kg"});
   ContactLawParams params;
   const std::string ribbon =
       table.Choice("ribbon", {"bilinear", "dahl", "cross_coupled"}, "bilinear");
@@ -122,6 +122,14 @@ ContactLawParams ReadContactLaw(const TableReader& tdb) {
                   : ribbon == "cross_coupled" ? ContactLawRibbon::kCrossCoupled
                                               : ContactLawRibbon::kBilinear;
   const bool bilinear = params.ribbon == ContactLawRibbon::kBilinear;
+  params.gravity_y_m_s2 = gravity.enabled ? -gravity.acceleration_m_s2 : 0.0;
+  // The bilinear law has no race in series: there a given mass is checked and kept for a switch
+  // of `ribbon` (as the other ribbon's table is), and an absent one is not logged as a key a fit
+  // could move.
+  params.outer_race_mass_kg =
+      bilinear ? table.OptionalNumber("outer_race_mass_kg", NonNegative()).value_or(0.0)
+               : table.Number("outer_race_mass_kg", NonNegative(), 0.0);
+  const bool massless_race = bilinear || !(params.outer_race_mass_kg > 0.0);
   params.bearing_stiffness_N_per_m = table.Number("bearing_stiffness_N_per_m", Positive());
   params.bearing_damping_N_s_per_m = table.Number("bearing_damping_N_s_per_m", NonNegative());
   if (bilinear) {
@@ -135,13 +143,13 @@ ContactLawParams ReadContactLaw(const TableReader& tdb) {
         table.OptionalNumber("ribbon_stiffness_N_per_m", Positive()).value_or(0.0);
     params.ribbon_crushing_m =
         table.OptionalNumber("ribbon_crushing_m", NonNegative()).value_or(0.0);
-    if (params.ribbon == ContactLawRibbon::kDahl) {
+    if (params.ribbon == ContactLawRibbon::kDahl && massless_race) {
       const NumberRule positive_damping{
           .lower = 0.0,
           .lower_inclusive = false,
           .what =
-              "a positive number (the Dahl ribbon's race is massless: this damping beside "
-              "the Dahl element sets its deflection rate)"};
+              "a positive number (the Dahl ribbon's race is massless, no outer_race_mass_kg: "
+              "this damping beside the Dahl element sets its deflection rate)"};
       params.ribbon_damping_N_s_per_m = table.Number("ribbon_damping_N_s_per_m", positive_damping);
     } else {
       params.ribbon_damping_N_s_per_m =
@@ -154,11 +162,11 @@ ContactLawParams ReadContactLaw(const TableReader& tdb) {
   if (const auto dahl = ribbon_table("dahl")) params.dahl = ReadDahl(*dahl);
   if (const auto cc = ribbon_table("cross_coupled")) {
     params.cross_coupled = ReadCrossCoupled(*cc);
-    if (params.ribbon == ContactLawRibbon::kCrossCoupled &&
+    if (params.ribbon == ContactLawRibbon::kCrossCoupled && massless_race &&
         !(params.cross_coupled.damping_N_s_per_m > 0.0)) {
       cc->Fail("damping_N_s_per_m",
                "a positive number (N s/m) (in series with the contact the ribbon's race is "
-               "massless: its damping sets the deflection rate)");
+               "massless, no outer_race_mass_kg: its damping sets the deflection rate)");
     }
   }
   return params;
@@ -274,7 +282,7 @@ TdbParams ReadTdb(const std::string& name, const TableReader& table, const Axial
   // The selected model's parameters are kept; another model's table is read for its checks
   // only.
   if (model == "contact_law" || table.Has("contact_law")) {
-    ContactLawParams read = ReadContactLaw(table);
+    ContactLawParams read = ReadContactLaw(table, gravity);
     if (model == "contact_law") tdb.model_params = std::move(read);
   }
   if (model == "four_dof" || table.Has("four_dof")) {

@@ -18,6 +18,8 @@
 #     `no_effect_needed`, with fit.json `unconfirmed_departure` and those effects as `closest`;
 #   - an offset NDE TDB with the DE TDB's friction high: the pair named, both within 20 % (the
 #     pair's search along the friction finds it; it had stopped at a y offset 24 % off);
+#   - a Dahl ribbon under the NDE housing, with each housing's mass declared (as a rig sheet
+#     would give it): the ribbon named, its slipping threshold and stiffness within 20 %;
 #   - on the 4-DOF rig (tests/truth/rigid_fourdof_c.toml: moving races, Hertzian contacts, a
 #     declared hold-then-fall power loss): its clean record, an exponential power loss where
 #     the hold is declared (the law switched, its time constant within 20 % of the change) and
@@ -44,11 +46,17 @@ fi
 }
 
 # The battery's seeds (ambdrop_truth --battery: kinds in order, seeds 1, 2, ...), so that these
-# are the battery's own records. Each case: rig, effect, seed, and optionally one more `fit`
-# option (its run's directories named after it).
+# are the battery's own records. Each case: rig, effect, seed, and optionally more `fit`
+# options (its run's directories named after them).
+# The Dahl ribbon's record, fitted by a user whose rig sheet gives the housing each ribbon
+# carries (the generator's 0.3 kg): the dry-friction candidate then rides a race with mass and
+# no viscous part, as the generator's ribbon, and finds the slipping threshold and stiffness.
+housings="rigid_rotor_a dahl_ribbon 13 --set tdb.nde.contact_law.outer_race_mass_kg=0.3"
+housings+=" --set tdb.de.contact_law.outer_race_mass_kg=0.3"
 cases=("rigid_rotor_a clean 1" "rigid_rotor_a clearance_worn 4" "rigid_rotor_a sensor_offset 11"
   "rigid_rotor_a race_inertia 15" "rigid_rotor_a side_pull 16" "rigid_rotor_a clean 11"
   "rigid_rotor_a clean 11 --jitter-draws=0" "rigid_rotor_a misalignment_friction 17"
+  "$housings"
   "rigid_fourdof_c clean 1"
   "rigid_fourdof_c flux_decay_a 8" "rigid_fourdof_c misalignment_friction 17"
   "rigid_fourdof_c side_pull 16")
@@ -83,8 +91,10 @@ declared = {}
 failed = []
 for case in sys.argv[4:]:
     rig, effect, seed, *extra = case.split()
-    run = f"{rig}_{effect}_{seed}" + "".join("_" + "".join(ch for ch in x if ch.isalnum())
-                                             for x in extra)
+    # As the shell names it: "_" and the options' lower-case letters and digits.
+    run = f"{rig}_{effect}_{seed}" + ("_" + "".join(
+        ch for ch in " ".join(extra) if ch in "abcdefghijklmnopqrstuvwxyz0123456789")
+        if extra else "")
     if rig not in declared:
         declared[rig] = battery.Declared(sys.argv[2], f"{sys.argv[3]}/{rig}.toml")
     truth = json.load(open(f"rec_{rig}_{effect}_{seed}/truth.json"))

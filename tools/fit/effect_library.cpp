@@ -554,7 +554,8 @@ struct LinearRibbon {
 
 // The linear ribbon a ribbon law could replace, if the TDB has one: a 4-DOF TDB with a
 // Kelvin-Voigt ribbon, or a contact-law TDB with its bilinear law. In series with the contact
-// the ribbon's race is massless, so its damping must be positive (rt_core/contact_law_tdb.hpp).
+// a massless race needs the ribbon's damping positive; a declared outer_race_mass_kg does not
+// (rt_core/contact_law_tdb.hpp).
 std::optional<LinearRibbon> LinearRibbonOf(const TdbParams& t) {
   if (t.model() == TdbModelKind::kFourDof && t.four_dof().ribbon == RibbonLaw::kKelvinVoigt) {
     return LinearRibbon{"tdb." + t.name + ".four_dof.", t.four_dof().kelvin_voigt.stiffness_N_per_m,
@@ -562,7 +563,8 @@ std::optional<LinearRibbon> LinearRibbonOf(const TdbParams& t) {
   }
   if (t.model() != TdbModelKind::kContactLaw) return std::nullopt;
   const ContactLawParams& c = t.contact_law();
-  if (c.ribbon == ContactLawRibbon::kBilinear && c.ribbon_damping_N_s_per_m > 0.0) {
+  if (c.ribbon == ContactLawRibbon::kBilinear &&
+      (c.ribbon_damping_N_s_per_m > 0.0 || c.outer_race_mass_kg > 0.0)) {
     return LinearRibbon{"tdb." + t.name + ".contact_law.", c.ribbon_stiffness_N_per_m,
                         c.ribbon_damping_N_s_per_m};
   }
@@ -623,27 +625,36 @@ Effect RibbonDryFriction(const TdbParams& t, const LinearRibbon& kv, double weig
           ? std::vector<double>{0.5 * crushing_m, crushing_m}
           : std::vector<double>{third(u_lo, u_hi, 1.0 / 3.0), third(u_lo, u_hi, 2.0 / 3.0)}};
   travel.log_scale = true;
+  // A race with mass declared on the contact-law TDB (outer_race_mass_kg, say a housing on its
+  // ribbon) rides the Dahl element with no viscous part beside it, as model #3's outer race
+  // (Jarroux 2019 Sec. 4.1): a massless race needs one only to have a rate, and it would add a
+  // dissipation the slipping already is. Fitting the mass too was tried: the drop's start does
+  // not decide it beside the slipping stiffness (docs/fit.md).
+  const bool race_mass =
+      t.model() == TdbModelKind::kContactLaw && t.contact_law().outer_race_mass_kg > 0.0;
   return RibbonLawEffect(
       t, "ribbon_dry_friction",
       fmt::format("dry friction in TDB {}'s ribbon: the generalized Dahl law (Jarroux 2019 Eq. "
                   "(1)-(3)) in place of its linear ribbon; slipping threshold, slipping stiffness "
-                  "and the travel to its hardening fitted",
-                  t.name),
+                  "and the travel to its hardening fitted{}",
+                  t.name, race_mass ? ", on the declared race mass" : ""),
       {threshold, stiffness, travel}, {3.0 * share, third(k_lo, k_hi, 1.0 / 3.0), c},
-      [kv](const std::vector<double>& v) {
+      [kv, race_mass](const std::vector<double>& v) {
         const std::string dahl = kv.table + "dahl.";
         const double mu_fn = v[0];
         const double rate_per_m = kDahlHardeningShape / v[2];
         const double hardening_N = mu_fn * std::exp(-kDahlHardeningShape);
-        return std::vector<std::string>{SetText(kv.table + "ribbon", "dahl"),
-                                        Set(dahl + "slipping_threshold_N", mu_fn),
-                                        Set(dahl + "threshold_scale", 1.0),
-                                        Set(dahl + "slipping_stiffness_N_per_m", v[1]),
-                                        Set(dahl + "beta_per_m", 1e6),
-                                        Set(dahl + "upper_hardening_N", hardening_N),
-                                        Set(dahl + "upper_hardening_rate_per_m", rate_per_m),
-                                        Set(dahl + "lower_hardening_N", hardening_N),
-                                        Set(dahl + "lower_hardening_rate_per_m", rate_per_m)};
+        std::vector<std::string> lines{SetText(kv.table + "ribbon", "dahl"),
+                                       Set(dahl + "slipping_threshold_N", mu_fn),
+                                       Set(dahl + "threshold_scale", 1.0),
+                                       Set(dahl + "slipping_stiffness_N_per_m", v[1]),
+                                       Set(dahl + "beta_per_m", 1e6),
+                                       Set(dahl + "upper_hardening_N", hardening_N),
+                                       Set(dahl + "upper_hardening_rate_per_m", rate_per_m),
+                                       Set(dahl + "lower_hardening_N", hardening_N),
+                                       Set(dahl + "lower_hardening_rate_per_m", rate_per_m)};
+        if (race_mass) lines.push_back(Set(kv.table + "ribbon_damping_N_s_per_m", 0.0));
+        return lines;
       });
 }
 

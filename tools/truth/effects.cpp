@@ -266,9 +266,9 @@ Truth ApplyEffect(const std::string& kind, std::uint64_t seed, Rig* rig) {
     if (!tdb.four_dof.enabled) {
       t.generator_parameters.emplace_back(g + "housing_mass_kg", r.housing_mass_kg);
     }
-    // The contact-law TDB's Dahl ribbon (Jarroux 2019 Eq. (1)-(3) in series with the contact):
-    // massless, where the generator's ribbon carries a housing. The 4-DOF TDB's (model #3)
-    // carries the outer race, as the generator's does there.
+    // The contact-law TDB's Dahl ribbon (Jarroux 2019 Eq. (1)-(3) in series with the contact)
+    // carries the housing as its race with mass, with no viscous part beside it, as the
+    // generator's. The 4-DOF TDB's (model #3) carries the outer race, as the generator's does.
     const std::string table =
         "tdb." + tdb.name + (tdb.four_dof.enabled ? ".four_dof." : ".contact_law.");
     const std::string p = table + "dahl.";
@@ -282,10 +282,8 @@ Truth ApplyEffect(const std::string& kind, std::uint64_t seed, Rig* rig) {
                       {p + "lower_hardening_N", Num(r.hardening_N)},
                       {p + "lower_hardening_rate_per_m", Num(r.hardening_rate_per_m)}};
     if (!tdb.four_dof.enabled) {
-      t.mapping = "approximate";
-      t.mapping_note =
-          "the contact-law TDB's Dahl ribbon is massless, in series with the contact; the "
-          "generator's ribbon carries a 0.3 kg housing, which no key maps";
+      t.ambdrop_keys.emplace_back(table + "outer_race_mass_kg", Num(r.housing_mass_kg));
+      t.ambdrop_keys.emplace_back(table + "ribbon_damping_N_s_per_m", "0.0");
     }
   } else if (kind == "race_drag") {
     TdbRig& tdb = rig->tdbs[TdbIndex(*rig, &d)];
