@@ -2,8 +2,7 @@
 // (contact_law.outer_race_mass_kg, ContactLawTdb): Newton on the race (Jarroux 2019 Sec. 4.1,
 // model #3's outer race) against closed-form limits: its free vibration on the ribbon, an
 // elastic strike by a journal that does not yield, the static balance a massless race reaches,
-// and its weight carried from the first step.
-#include <gmock/gmock.h>
+// and its weight carried from the first step. Its config key: contact_law_ribbon_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,16 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "io/config/config_loader.hpp"
 #include "malloc_guard.hpp"
 #include "rt_core/contact_law_tdb.hpp"
 #include "rt_core/ribbon_dahl.hpp"
-#include "test_configs.hpp"
 
 namespace ambdrop {
 namespace {
-
-using ::testing::HasSubstr;
 
 constexpr double kClearance = 0.2e-3;
 constexpr double kMass = 0.3;  // kg, a bearing housing's
@@ -227,55 +222,6 @@ TEST(ContactLawRaceMass, StepAllocationFreeAndBitIdentical) {
   }
   EXPECT_GT(std::abs(a[ContactLawTdb::kRaceSpin]), 0.0);  // the contact happened
   EXPECT_EQ(std::memcmp(a.data(), b.data(), sizeof(double) * a.size()), 0);
-}
-
-std::string ErrorOf(const std::vector<std::string>& overrides) {
-  try {
-    LoadConfig(testing::ConfigPath("jarroux2019_industrial.toml"), overrides);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
-const std::vector<std::string> kDahlKeys = {
-    "tdb.nde.contact_law.ribbon=\"dahl\"",
-    "tdb.nde.contact_law.dahl.slipping_threshold_N=100",
-    "tdb.nde.contact_law.dahl.slipping_stiffness_N_per_m=5e6",
-    "tdb.nde.contact_law.dahl.beta_per_m=1e7",
-    "tdb.nde.contact_law.dahl.upper_hardening_N=20",
-    "tdb.nde.contact_law.dahl.upper_hardening_rate_per_m=2e4",
-    "tdb.nde.contact_law.dahl.lower_hardening_N=20",
-    "tdb.nde.contact_law.dahl.lower_hardening_rate_per_m=2e4"};
-
-const TdbParams& Nde(const ModelParams& params) {
-  for (const TdbParams& t : params.tdbs) {
-    if (t.name == "nde") return t;
-  }
-  throw std::out_of_range("no TDB nde");
-}
-
-TEST(ConfigContactLawRaceMass, ReadWithGravityAndItsDampingMayBeZero) {
-  std::vector<std::string> keys = kDahlKeys;
-  keys.push_back("tdb.nde.contact_law.outer_race_mass_kg=0.3");
-  keys.push_back("tdb.nde.contact_law.ribbon_damping_N_s_per_m=0");
-  const ModelParams params = testing::LoadTestConfig("jarroux2019_industrial.toml", keys);
-  const ContactLawParams& c = Nde(params).contact_law();
-  EXPECT_EQ(c.outer_race_mass_kg, 0.3);
-  EXPECT_EQ(c.ribbon_damping_N_s_per_m, 0.0);
-  EXPECT_LT(c.gravity_y_m_s2, -9.0);
-  EXPECT_EQ(
-      Nde(testing::LoadTestConfig("jarroux2019_industrial.toml")).contact_law().outer_race_mass_kg,
-      0.0);
-  // With the bilinear law it is kept for a switch of the ribbon and does not enter the law.
-  const ContactLawParams bilinear =
-      Nde(testing::LoadTestConfig("jarroux2019_industrial.toml",
-                                  {"tdb.nde.contact_law.outer_race_mass_kg=0.3"}))
-          .contact_law();
-  EXPECT_EQ(bilinear.outer_race_mass_kg, 0.3);
-  EXPECT_EQ(bilinear.ribbon, ContactLawRibbon::kBilinear);
-  keys.back() = "tdb.nde.contact_law.outer_race_mass_kg=-1";
-  EXPECT_THAT(ErrorOf(keys), HasSubstr("key 'tdb.nde.contact_law.outer_race_mass_kg'"));
 }
 
 }  // namespace

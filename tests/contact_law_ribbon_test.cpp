@@ -298,5 +298,30 @@ TEST(ConfigContactLawRibbon, ErrorsNameKeyAndWhy) {
   EXPECT_THAT(ErrorOf(bad_dahl), HasSubstr("unknown key 'tdb.nde.contact_law.dahl.beta'"));
 }
 
+// contact_law.outer_race_mass_kg (contact_law_race_mass_test.cpp): read with gravity, the
+// ribbon's damping then allowed 0.
+TEST(ConfigContactLawRaceMass, ReadWithGravityAndItsDampingMayBeZero) {
+  std::vector<std::string> keys = kDahlKeys;
+  keys.push_back("tdb.nde.contact_law.outer_race_mass_kg=0.3");
+  keys.push_back("tdb.nde.contact_law.ribbon_damping_N_s_per_m=0");
+  const ModelParams params = testing::LoadTestConfig("jarroux2019_industrial.toml", keys);
+  const ContactLawParams& c = Nde(params).contact_law();
+  EXPECT_EQ(c.outer_race_mass_kg, 0.3);
+  EXPECT_EQ(c.ribbon_damping_N_s_per_m, 0.0);
+  EXPECT_LT(c.gravity_y_m_s2, -9.0);
+  EXPECT_EQ(
+      Nde(testing::LoadTestConfig("jarroux2019_industrial.toml")).contact_law().outer_race_mass_kg,
+      0.0);
+  // With the bilinear law it is kept for a switch of the ribbon and does not enter the law.
+  const ContactLawParams bilinear =
+      Nde(testing::LoadTestConfig("jarroux2019_industrial.toml",
+                                  {"tdb.nde.contact_law.outer_race_mass_kg=0.3"}))
+          .contact_law();
+  EXPECT_EQ(bilinear.outer_race_mass_kg, 0.3);
+  EXPECT_EQ(bilinear.ribbon, ContactLawRibbon::kBilinear);
+  keys.back() = "tdb.nde.contact_law.outer_race_mass_kg=-1";
+  EXPECT_THAT(ErrorOf(keys), HasSubstr("key 'tdb.nde.contact_law.outer_race_mass_kg'"));
+}
+
 }  // namespace
 }  // namespace ambdrop

@@ -120,15 +120,21 @@ TEST(FitTriggerState, NeedsDisplacements) {
   const std::string table =
       "[measurement]\nsample_rate_Hz = 20000.0\ntrigger_time_s = 0.2\n"
       "trigger_state = \"record\"\n";
-  try {
-    LoadConfigFromString(
-        base + table + "[[measurement.channel]]\ncolumn = \"w\"\nquantity = \"rotor_speed\"\n",
-        "m.toml");
-    ADD_FAILURE() << "loaded";
-  } catch (const ConfigError& e) {
-    EXPECT_THAT(e.what(), ::testing::HasSubstr("m.toml:5: key 'measurement.trigger_state': "
-                                               "expected \"model\", or a channel with quantity = "
-                                               "\"displacement\""));
+  for (const char* state : {"record", "record_start"}) {
+    try {
+      LoadConfigFromString(base +
+                               "[measurement]\nsample_rate_Hz = 20000.0\ntrigger_time_s = 0.2\n"
+                               "trigger_state = \"" +
+                               state +
+                               "\"\n[[measurement.channel]]\ncolumn = \"w\"\nquantity = "
+                               "\"rotor_speed\"\n",
+                           "m.toml");
+      ADD_FAILURE() << state << " loaded";
+    } catch (const ConfigError& e) {
+      EXPECT_THAT(e.what(), ::testing::HasSubstr("m.toml:5: key 'measurement.trigger_state': "
+                                                 "expected \"model\", or a channel with quantity = "
+                                                 "\"displacement\""));
+    }
   }
   const LoadedConfig open = LoadConfigFromString(
       base + table + "power_loss = \"from_record\"\n" +

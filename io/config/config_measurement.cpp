@@ -402,8 +402,11 @@ MeasurementParams ReadMeasurement(const TableReader& table, const ModelParams& p
     m.power_loss = PowerLossSource::kFromRecord;
     CheckFromRecord(table, params, m);
   }
-  if (table.Choice("trigger_state", {"model", "record"}, "model") == "record") {
-    m.trigger_state_from_record = true;
+  const std::string trigger_state =
+      table.Choice("trigger_state", {"model", "record", "record_start"}, "model");
+  if (trigger_state != "model") {
+    m.trigger_state_from_record = trigger_state == "record";
+    m.trigger_state_for_start = trigger_state == "record_start";
     if (std::none_of(m.channels.begin(), m.channels.end(), [](const MeasurementChannel& ch) {
           return ch.quantity == MeasuredQuantity::kDisplacement;
         })) {

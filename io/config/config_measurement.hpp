@@ -139,6 +139,13 @@ struct MeasurementParams {
   /// that motion sends it. "model" (default): closed loop the model's own levitated state, open
   /// loop a quadratic through each channel's samples around the run's start.
   bool trigger_state_from_record = false;
+  /// "record_start": the drop's start only (the fit's early part) from the lead window's
+  /// estimate, as "record"; the rest of the record from the model's own levitated state. The
+  /// start is deterministic given the state at the trigger, which the record tells; after the
+  /// first impacts a drop may be chaotic, and there the model's state and draws of its jitter
+  /// compare (docs/fit.md). trigger_state_from_record stays false: the fit's cost of the start
+  /// sets it for its own runs (tools/fit/record_cost.hpp, MeasurementFor).
+  bool trigger_state_for_start = false;
   /// Whether channel `ch` is an input (a from_record coil current), not compared.
   bool Drives(const MeasurementChannel& ch) const {
     return power_loss == PowerLossSource::kFromRecord && ch.quantity == MeasuredQuantity::kCurrent;

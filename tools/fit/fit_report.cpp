@@ -141,7 +141,10 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     if (m.Drives(ch)) json.String(ch.column);
   }
   json.EndArray();
-  if (m.trigger_state_from_record) json.Key("trigger_state_fit").String(s.trigger_state);
+  if (m.trigger_state_from_record || m.trigger_state_for_start) {
+    json.Key("trigger_state").String(m.trigger_state_for_start ? "record_start" : "record");
+    json.Key("trigger_state_fit").String(s.trigger_state);
+  }
   if (s.jitter.ran) {
     json.Key("jitter_draws").BeginObject();
     json.Key("jitter_sigma_m").Number(s.jitter.jitter_sigma_m);
@@ -360,6 +363,11 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
   if (m.trigger_state_from_record) {
     md += fmt::format("The state at the trigger (measurement.trigger_state = \"record\"): {}.\n\n",
                       s.trigger_state);
+  } else if (m.trigger_state_for_start) {
+    md += fmt::format(
+        "The state at the trigger (measurement.trigger_state = \"record_start\"): for the drop's "
+        "start, {}; for the rest of the record, the model's own levitated state.\n\n",
+        s.trigger_state);
   }
   if (o.step != nullptr) {
     md += fmt::format("Every run of the fit took a step of {:.3g} s (declared {:.3g} s): {}.\n\n",

@@ -94,10 +94,20 @@ std::pair<std::size_t, std::size_t> RowsIn(const MeasuredRecord& r, const Measur
 
 }  // namespace
 
+MeasurementParams MeasurementFor(const MeasurementParams& measurement, CostScope scope) {
+  MeasurementParams m = measurement;
+  if (m.trigger_state_for_start && scope == CostScope::kEarly) m.trigger_state_from_record = true;
+  return m;
+}
+
 RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& measurement,
                        const MeasuredRecord& record, const RecordRunOptions& run,
                        std::size_t max_samples_per_channel, CostScope scope)
-    : declared_(declared), measurement_(measurement), record_(record), run_(run), scope_(scope) {
+    : declared_(declared),
+      measurement_(MeasurementFor(measurement, scope)),
+      record_(record),
+      run_(run),
+      scope_(scope) {
   trigger_s_ = RecordTriggerTime(measurement, record);
   if (!run_.rotor_cache) run_.rotor_cache = std::make_shared<ReducedRotorCache>();
   const bool closed = ClosedLoop(declared, measurement, run);
@@ -267,6 +277,11 @@ SimulatedRecord RecordCost::Simulate(const ModelParams& params) const {
 }
 
 Eigen::VectorXd RecordCost::Residual(const SimulatedRecord& sim) const {
+  if (sim.params && sim.state_from_record != measurement_.trigger_state_from_record) {
+    RecordRunOptions o = sim.options;
+    o.end_s = run_.end_s;
+    return Residual(SimulateOnRecord(*sim.params, measurement_, record_, o));
+  }
   if (sim.values.size() != measurement_.channels.size()) return Unreached();
   Eigen::VectorXd r(static_cast<Eigen::Index>(size()));
   Eigen::Index i = 0;

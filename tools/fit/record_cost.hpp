@@ -40,6 +40,11 @@ enum class CostScope {
   kSpeeds,
 };
 
+/// The measurement a cost of `scope` runs its model with: with trigger_state = "record_start"
+/// the drop's start (kEarly) from the lead window's estimate of the state at the trigger (as
+/// "record"), every other part from the model's own levitated state.
+MeasurementParams MeasurementFor(const MeasurementParams& measurement, CostScope scope);
+
 class RecordCost {
  public:
   /// `max_samples_per_channel` thins the compared rows evenly (the cost of the linear algebra,
@@ -51,7 +56,8 @@ class RecordCost {
   /// The residual vector of `params` (a copy of the declared ones with effects applied). A run
   /// that stops early scores every sample it did not reach as a full range off.
   Eigen::VectorXd Residual(const ModelParams& params) const;
-  /// The same for a run already made.
+  /// The same for a run already made; one whose state at the trigger was taken otherwise than
+  /// this cost takes it (MeasurementFor) is run again this cost's way, with its own options.
   Eigen::VectorXd Residual(const SimulatedRecord& sim) const;
   /// The residual of a run that never started (a config the readers refused): every sample a
   /// full range off, as a run that stopped at once scores.
@@ -102,7 +108,7 @@ class RecordCost {
   };
   double Apply(const Block& b, const std::vector<double>& values) const;
   const ModelParams& declared_;
-  const MeasurementParams& measurement_;
+  MeasurementParams measurement_;  ///< MeasurementFor(the caller's, scope)
   const MeasuredRecord& record_;
   RecordRunOptions run_;
   CostScope scope_ = CostScope::kWhole;

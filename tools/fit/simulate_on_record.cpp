@@ -199,8 +199,10 @@ void SetToRecordedState(const Model& model, const MeasurementParams& m, const Me
 
 }  // namespace
 
-SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementParams& m,
-                                 const MeasuredRecord& r, const RecordRunOptions& options) {
+namespace {
+
+SimulatedRecord RunOnRecord(const ModelParams& declared, const MeasurementParams& m,
+                            const MeasuredRecord& r, const RecordRunOptions& options) {
   SimulatedRecord out;
   out.trigger_time_s = RecordTriggerTime(m, r);
   out.closed_loop = ClosedLoop(declared, m, options);
@@ -553,6 +555,17 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
       out.failure = DescribeFailure(model, driver.status(), driver.state());
     }
   }
+  return out;
+}
+
+}  // namespace
+
+SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementParams& m,
+                                 const MeasuredRecord& r, const RecordRunOptions& options) {
+  SimulatedRecord out = RunOnRecord(declared, m, r, options);
+  out.params = std::make_shared<const ModelParams>(declared);
+  out.options = options;
+  out.state_from_record = m.trigger_state_from_record;
   return out;
 }
 

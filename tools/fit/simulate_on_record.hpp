@@ -112,6 +112,13 @@ struct SimulatedRecord {
   /// ... and what that fit did, or why it kept the model's own state (LeadStateFit::note);
   /// "" without measurement.trigger_state = "record".
   std::string lead_fit;
+  /// What the run was made of: its params and options, and whether its state at the trigger is
+  /// the lead window's estimate. A cost whose start differs (measurement.trigger_state =
+  /// "record_start": the drop's start from the estimate, the rest from the model's own state)
+  /// runs them again its own way (RecordCost::Residual).
+  std::shared_ptr<const ModelParams> params;
+  RecordRunOptions options;
+  bool state_from_record = false;
 };
 
 /// The trigger time: given, or where every measured current starts to fall away from its
