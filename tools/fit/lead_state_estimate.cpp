@@ -286,6 +286,8 @@ LeadStateFit FitLeadState(const ModelParams& declared, const MeasurementParams& 
   }
   LeadStateFit fit;
   fit.correction = to_state * theta.head(n_state);
+  fit.misfit = (e - jacobian * theta).norm() /
+               std::sqrt(static_cast<double>(std::max<Eigen::Index>(rows, 1)));
   if (!fit.correction.allFinite() || !theta.allFinite()) {
     return none("the least-squares correction is not finite");
   }
@@ -360,9 +362,9 @@ LeadStateFit FitLeadState(const ModelParams& declared, const MeasurementParams& 
   fit.note = fmt::format(
       "{} samples of {} displacement channels over the {:.3g} ms lead window; the state at its "
       "start along {} seen directions and the measured currents of {} AMB axes at {} knots "
-      "each ({} of {} unknowns resolved)",
+      "each ({} of {} unknowns resolved); the samples left at {:.2g} times their noise",
       samples.size(), channels.size(), lead_s * 1e3, directions.size(), axes.size(), knots, used,
-      n_unknown);
+      n_unknown, fit.misfit);
   return fit;
 }
 

@@ -15,6 +15,7 @@
 // the independent flexible rig. One Gauss-Newton step on finite-difference sensitivities: the
 // levitated motion is micrometres, where the plant is linear. A window through the model pins
 // the velocity far better than a local polynomial when the rotor jitters at hundreds of hertz.
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -53,6 +54,10 @@ struct LeadStateFit {
   /// since a start left unfitted changes what the residual means.
   std::string note;
   bool fitted = false;
+  /// The RMS of the window's displacement samples left by the fit, in units of their noise: 1
+  /// where the model driven by the record's currents meets the window at its noise; far above,
+  /// where it cannot (a force the model lacks, which the currents held the rotor against).
+  double misfit = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The fit for `at_lead_start`, the model's state at `trigger_s - lead_s`.

@@ -355,6 +355,7 @@ SimulatedRecord RunOnRecord(const ModelParams& declared, const MeasurementParams
     out.lead_uncertainty = fit.uncertainty;
     out.lead_uncertainty_all = fit.uncertainty_all;
     out.lead_fit = fit.note;
+    out.lead_misfit = fit.misfit;
   };
   if (controlled) {
     controller.emplace(model, static_cast<double>(substeps) * dt);

@@ -112,6 +112,9 @@ struct SimulatedRecord {
   /// ... and what that fit did, or why it kept the model's own state (LeadStateFit::note);
   /// "" without measurement.trigger_state = "record".
   std::string lead_fit;
+  /// The RMS of the lead window's samples that fit leaves, in units of their noise
+  /// (LeadStateFit::misfit); NaN without it.
+  double lead_misfit = std::numeric_limits<double>::quiet_NaN();
   /// What the run was made of: its params and options, and whether its state at the trigger is
   /// the lead window's estimate. A cost whose start differs (measurement.trigger_state =
   /// "record_start": the drop's start from the estimate, the rest from the model's own state)
