@@ -216,25 +216,18 @@ void ContactLawTdb::EvaluateRaceWithMass(const JournalMotion& j, const double* s
   const int v = race_velocity_index_;
   const double race_speed = s[kRaceSpin];
   const double ux = s[kRibbonX], uy = s[kRibbonY], vx = s[v], vy = s[v + 1];
-  const ContactGeometry g = JournalGeometry(p, j, {ux, uy, vx, vy});
-  const double delta = g.radius_m - p.clearance_m;
-
-  *out = TdbForce{};
-  out->penetration_m = delta;
-  out->tdb_spin_rad_s = race_speed;
-  double normal = 0.0, friction = 0.0;
-  if (delta > 0.0) {
-    // Jarroux 2019 Eq. (12), crushed branch, on the moving race; a receding contact cannot pull.
-    normal = std::max(0.0, c.bearing_stiffness_N_per_m * delta +
-                               c.bearing_damping_N_s_per_m * g.radial_speed_m_s);
-    // Jarroux 2019 Eq. (11), slip relative to the race, plus the viscous force on the whirl speed.
-    friction = FrictionForce(p.friction, normal, SurfaceSlip(p, j, g, race_speed));
-    ForceOnRotor(g, normal, -friction - p.friction.whirl_damping_N_s_per_m * g.whirl_speed_m_s,
-                 &out->fx_N, &out->fy_N);
-    out->torque_on_rotor_N_m = -friction * p.journal_radius_m;
-  }
-  out->normal_force_N = normal;
-  out->tangential_force_N = friction;
+  // The journal on the moving race, as the 4-DOF TDB's inner race meets it.
+  const JournalContact contact = TouchJournal(
+      p, j, {ux, uy, vx, vy}, race_speed, p.friction.whirl_damping_N_s_per_m,
+      [&c](double delta, const ContactGeometry& g) {
+        // Jarroux 2019 Eq. (12), crushed branch; a receding contact cannot pull.
+        return std::max(0.0, c.bearing_stiffness_N_per_m * delta +
+                                 c.bearing_damping_N_s_per_m * g.radial_speed_m_s);
+      },
+      [&](double normal, const ContactGeometry& g) {
+        return FrictionForce(p.friction, normal, SurfaceSlip(p, j, g, race_speed));  // Eq. (11)
+      },
+      out);
 
   double ribbon_x = 0.0, ribbon_y = 0.0;  // what the ribbon puts on the housing; the race feels -
   if (c.ribbon == ContactLawRibbon::kDahl) {
@@ -251,11 +244,11 @@ void ContactLawTdb::EvaluateRaceWithMass(const JournalMotion& j, const double* s
   const double inverse_mass = 1.0 / c.outer_race_mass_kg;
   rate[kRibbonX] = vx;
   rate[kRibbonY] = vy;
-  rate[v] = (-out->fx_N - ribbon_x) * inverse_mass;
-  rate[v + 1] = (-out->fy_N - ribbon_y) * inverse_mass + c.gravity_y_m_s2;
+  rate[v] = (-contact.on_rotor_x_N - ribbon_x) * inverse_mass;
+  rate[v + 1] = (-contact.on_rotor_y_N - ribbon_y) * inverse_mass + c.gravity_y_m_s2;
   out->support_x_N = ribbon_x;
   out->support_y_N = ribbon_y;
-  rate[kRaceSpin] = RaceAcceleration(p, race_speed, friction, normal);
+  rate[kRaceSpin] = RaceAcceleration(p, race_speed, contact.friction_N, contact.normal_N);
 }
 
 }  // namespace ambdrop

@@ -564,9 +564,12 @@ SimulatedRecord RunOnRecord(const ModelParams& declared, const MeasurementParams
 SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementParams& m,
                                  const MeasuredRecord& r, const RecordRunOptions& options) {
   SimulatedRecord out = RunOnRecord(declared, m, r, options);
-  out.params = std::make_shared<const ModelParams>(declared);
-  out.options = options;
   out.state_from_record = m.trigger_state_from_record;
+  // Only a fit whose parts take the state at the trigger two ways runs a run again.
+  if (m.trigger_state_for_start) {
+    out.params = std::make_shared<const ModelParams>(declared);
+    out.options = options;
+  }
   return out;
 }
 
