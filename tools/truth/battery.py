@@ -8,7 +8,7 @@ exits 0 whatever the score; non-zero only when a fit or the generator fails or a
     battery.py AMBDROP AMBDROP_TRUTH RIG.json CONFIG.toml OUT
                [--declared [--count N]] [--jobs N] [--only NAME ...]
                [--record-file record.csv] [--markdown FILE] [--score-only] [--fit-arg ARG ...]
-               [--ceiling] [--clean-seeds N [--first-seed S]]
+               [--ceiling] [--clean-seeds N [--first-seed S]] [--battery-seed S]
 
     AMBDROP, AMBDROP_TRUTH  the two binaries (build/ambdrop, build/tools/truth/ambdrop_truth)
     RIG.json, CONFIG.toml   the generator's rig and its translation into an ambdrop config
@@ -31,6 +31,9 @@ exits 0 whatever the score; non-zero only when a fit or the generator fails or a
                             S+N-1 (--first-seed, default 3: the battery's own are 1 and 2), each
                             `ambdrop_truth --effect clean --seed`; the count is then the rate of
                             invented effects on records of the rig as declared
+    --battery-seed S        the battery's (or --declared's) records from seed S on instead of 1
+                            (101): the same kinds at other sizes and jitters, records no rule
+                            of the fit was made on (`ambdrop_truth --first-seed`)
     --ceiling               also fit each record with its truth's own `--set` lines
                             (OUT/fits/<record>/ceiling/): the residual the true numbers leave
                             on the part the record's fit judged, so the cut the record can show
@@ -578,6 +581,7 @@ def main():
     p.add_argument("--ceiling", action="store_true")
     p.add_argument("--clean-seeds", type=int, default=0)
     p.add_argument("--first-seed", type=int, default=3)
+    p.add_argument("--battery-seed", type=int, default=0)
     args = p.parse_args()
     for f in (args.rig, args.config):
         if not Path(f).is_file():
@@ -609,6 +613,8 @@ def main():
             else:
                 mode = (["--battery-declared", str(records), "--count", str(args.count)]
                         if args.declared else ["--battery", str(records)])
+                if args.battery_seed > 0:
+                    mode += ["--first-seed", str(args.battery_seed)]
                 gen = subprocess.run([args.ambdrop_truth, "--rig", args.rig] + mode + ["--si"],
                                      capture_output=True, text=True)
                 if gen.returncode != 0:

@@ -33,6 +33,7 @@ struct Args {
   std::string rig;
   std::string effect;
   std::uint64_t seed = 1;
+  std::uint64_t first_seed = 0;  ///< --battery's first seed (0: the default, 1 or 101)
   std::string out;
   std::string battery;
   std::string battery_declared;
@@ -47,8 +48,9 @@ void Usage() {
   std::fputs(
       "usage: ambdrop_truth --rig R.json --effect NAME --seed N --out DIR [--si] [--no-noise]\n"
       "                     [--exact-record]\n"
-      "       ambdrop_truth --rig R.json --battery DIR [--si]\n"
-      "       ambdrop_truth --rig R.json --battery-declared DIR [--count N] [--si]\n"
+      "       ambdrop_truth --rig R.json --battery DIR [--first-seed S] [--si]\n"
+      "       ambdrop_truth --rig R.json --battery-declared DIR [--count N] [--first-seed S] "
+      "[--si]\n"
       "       ambdrop_truth [--rig R.json] --list\n"
       "NAME: a kind of --list; declared_off (one number of the rig sheet off, drawn by the\n"
       "seed) or declared_off:ENTRY (that number; --rig R.json --list names the entries)\n"
@@ -116,6 +118,16 @@ int main(int argc, char** argv) {
         fmt::print(stderr, "--seed: expected a non-negative integer, found '{}'\n", v);
         return kBadCommandLine;
       }
+    } else if (a[i] == "--first-seed") {
+      const std::string v = value();
+      try {
+        std::size_t used = 0;
+        args.first_seed = std::stoull(v, &used);
+        if (used != v.size() || args.first_seed == 0 || v[0] == '-') throw std::invalid_argument(v);
+      } catch (const std::exception&) {
+        fmt::print(stderr, "--first-seed: expected a positive integer, found '{}'\n", v);
+        return kBadCommandLine;
+      }
     } else if (a[i] == "--out") {
       args.out = value();
     } else if (a[i] == "--battery") {
@@ -170,7 +182,7 @@ int main(int argc, char** argv) {
                     (!args.effect.empty() || !args.out.empty());
   if (args.rig.empty() || modes != 1 ||
       (args.battery.empty() && args.battery_declared.empty() &&
-       (args.effect.empty() || args.out.empty()))) {
+       (args.effect.empty() || args.out.empty() || args.first_seed > 0))) {
     Usage();
     return kBadCommandLine;
   }
@@ -182,19 +194,21 @@ int main(int argc, char** argv) {
     }
     // --battery: every kind once, the clean record twice (seeds 1..17). --battery-declared
     // (issue 23): the clean record twice (seeds 1, 2), then --count declared_off records
-    // (seeds 101, 102, ...). Blind copies under names that do not give the effect away, and
-    // battery.json to map them back.
+    // (seeds 101, 102, ...). --first-seed S moves the first seed (of the declared_off draws):
+    // the same kinds, other sizes and jitters, records no rule was made on. Blind copies under
+    // names that do not give the effect away, and battery.json to map them back.
     const bool declared = !args.battery_declared.empty();
     const fs::path root(declared ? args.battery_declared : args.battery);
     std::vector<std::pair<std::string, std::uint64_t>> plan;
     if (declared) {
       plan.emplace_back("clean", 1);
       plan.emplace_back("clean", 2);
+      const std::uint64_t first = args.first_seed > 0 ? args.first_seed : 101;
       for (int i = 0; i < args.count; ++i) {
-        plan.emplace_back("declared_off", 101 + static_cast<std::uint64_t>(i));
+        plan.emplace_back("declared_off", first + static_cast<std::uint64_t>(i));
       }
     } else {
-      std::uint64_t seed = 1;
+      std::uint64_t seed = args.first_seed > 0 ? args.first_seed : 1;
       for (const std::string& kind : EffectKinds()) {
         plan.emplace_back(kind, seed++);
         if (kind == "clean") plan.emplace_back(kind, seed++);
