@@ -31,7 +31,14 @@
 #     the pair is named, both values within 20 %; not the 3x cut, which this record's truth
 #     itself does not reach: its own --set lines cut the start 2.85x, `battery.py --ceiling`),
 #     and a side pull there too, which the magnets' fading law takes most of the way on the
-#     drop's start while the speeds refute it: `unexplained`, nothing chosen.
+#     drop's start while the speeds refute it: `unexplained`, nothing chosen;
+#   - two records of other draws (`ambdrop_truth --battery --first-seed 201`): the 4-DOF rig's
+#     clean seed 202, whose rotor started 0.4 mm/s off the model's rest and whose start departs
+#     beyond a limit that a synchronous orbit shift sets (the start's jitter draws span it):
+#     `no_effect_needed`; the rigid rig's offset-and-friction seed 217, where the friction moves
+#     the start too and the offset fitted beside the declared friction sat 32 % low: the pair
+#     named (the friction profiled), the friction and the offset's x within 20 %, its y (a
+#     twelfth of x) within 30 % of its change.
 # Every record is fitted before the script fails, so one run shows every outcome.
 # Usage: truth_fit_subset.sh AMBDROP_BINARY SOURCE_DIR [AMBDROP_TRUTH_BINARY]
 #   (the truth binary defaults to tools/truth/ambdrop_truth beside the ambdrop binary's build
@@ -63,7 +70,7 @@ cases=("rigid_rotor_a clean 1" "rigid_rotor_a clearance_worn 4" "rigid_rotor_a s
   "$housings" "rigid_rotor_a friction_one_tdb 5 --set measurement.trigger_state=\"record_start\""
   "rigid_fourdof_c clean 1"
   "rigid_fourdof_c flux_decay_a 8" "rigid_fourdof_c misalignment_friction 17"
-  "rigid_fourdof_c side_pull 16")
+  "rigid_fourdof_c side_pull 16" "rigid_fourdof_c clean 202" "rigid_rotor_a misalignment_friction 217")
 for c in "${cases[@]}"; do
   read -r rig effect seed extra <<<"$c"
   run="${rig}_${effect}_$seed${extra:+_${extra//[^a-z0-9]/}}"
@@ -110,7 +117,20 @@ for case in sys.argv[4:]:
         problems.append(f"verdict {fit['verdict']}, expected {verdict}")
     if verdict is not None and fit["chosen"]:
         problems.append("chose " + row["chosen"] + " (expected nothing)")
-    if not row["hit"]:
+    if (rig, effect, seed) == ("rigid_rotor_a", "misalignment_friction", "217"):
+        # The pair and its values, the small y offset held to 30 % of its change.
+        want = {"tdb.nde.misalignment.x_m": 0.2, "tdb.nde.misalignment.y_m": 0.3,
+                "tdb.nde.friction.coefficient": 0.2}
+        got = dict(line.split("=", 1) for c in fit["chosen"] for line in c.get("set", []))
+        sets = dict(line.split("=", 1) for line in truth["ambdrop_set"])
+        for key, tol in want.items():
+            true = float(sets[key])
+            base = declared[rig].value(key, {}) or 0.0
+            if key not in got or abs(float(got[key]) - true) > tol * abs(true - base):
+                problems.append(f"{key}: {got.get(key)} against {true} (declared {base})")
+        if fit["verdict"] != "explained":
+            problems.append(f"verdict {fit['verdict']}")
+    elif not row["hit"]:
         rules = [n for n in (row["note"] or "miss").split("; ") if n]
         if (rig, effect) in cut_beyond_the_record:
             rules = [n for n in rules if not n.startswith("cut ")]

@@ -65,7 +65,7 @@ double DisplacementNoiseMedian(const RecordCost& cost) {
 }
 
 double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
-                        const Eigen::VectorXd& residual_before, int threads) {
+                        const Eigen::VectorXd& residual_before, int threads, int draws) {
   const MeasurementParams& m = cost.measurement();
   const MeasuredRecord& r = cost.record();
   const ModelParams& params = cost.declared();
@@ -120,19 +120,47 @@ double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
           ? TriggerStateProbes(cost, SimulateOnRecord(params, m, r, cost.run_options()),
                                TriggerStateAxes::kSeen)
           : std::vector<RecordRunOptions>();
-  std::vector<double> moved(variants.size() + starts.size() + axes.size(), 0.0);
+  // On the drop's start, closed loop from the model's own levitated state: runs of it with its
+  // controller answering sensor noise of the record's level (the rotor's jitter at the trigger
+  // drawn, jitter_draws.hpp). A synchronous orbit shift does not span that jitter where the
+  // held currents leave the rotor on the magnets' negative stiffness: a clean record of the
+  // 4-DOF truth rig started 0.4 mm/s off the model's rest (its controller's 0.1 A current
+  // jitter), and its start departed 0.0140 against a limit of 0.0134 set by a runout probe's
+  // 0.0018; exact records of the same rig's seeds depart from 0.0022 to 0.0098, the jitter
+  // alone. A typical draw's move is the start's sensitivity to that jitter.
+  const int jitter_draws =
+      cost.scope() == CostScope::kEarly && closed && !m.trigger_state_from_record
+          ? std::max(0, draws)
+          : 0;
+  const std::size_t fixed = variants.size() + starts.size() + axes.size();
+  std::vector<double> moved(fixed + static_cast<std::size_t>(jitter_draws), 0.0);
   ParallelFor(moved.size(), threads, [&](std::size_t i) {
     Eigen::VectorXd r_i;
     if (i < variants.size()) {
       r_i = cost.Residual(declared.With(variants[i]).params);
     } else if (i < variants.size() + starts.size()) {
       r_i = cost.Residual(SimulateOnRecord(params, m, r, starts[i - variants.size()]));
-    } else {
+    } else if (i < fixed) {
       r_i =
           cost.Residual(SimulateOnRecord(params, m, r, axes[i - variants.size() - starts.size()]));
+    } else {
+      RecordRunOptions o = cost.run_options();
+      o.jitter_sigma_m = 3.0 * amplitude;  // the displacement channels' median noise
+      o.jitter_seed = static_cast<std::uint64_t>(i - fixed) + 1;
+      r_i = cost.Residual(SimulateOnRecord(params, m, r, o));
     }
     moved[i] = OverallRms(cost, (r_i - residual_before).squaredNorm());
   });
+  // A typical draw's move: a few draws whose first impact turns another way move the
+  // impact-force channels by their whole impulse, and an RMS over eight draws followed them
+  // (0.0075 against a median of 0.0028 on the rigid truth rig, where it hid a TDB offset).
+  std::vector<double> drawn(moved.begin() + static_cast<std::ptrdiff_t>(fixed), moved.end());
+  double jitter = 0.0;
+  if (!drawn.empty()) {
+    std::sort(drawn.begin(), drawn.end());
+    const std::size_t h = drawn.size() / 2;
+    jitter = drawn.size() % 2 == 1 ? drawn[h] : 0.5 * (drawn[h - 1] + drawn[h]);
+  }
   double worst = 0.0;
   for (std::size_t i = 0; i < variants.size() + starts.size(); ++i) {
     worst = std::max(worst, moved[i]);
@@ -142,7 +170,7 @@ double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
     const std::size_t i = variants.size() + starts.size() + k;
     along_axes += std::pow(std::max(moved[i], moved[i + 1]), 2);
   }
-  return std::max(worst, std::sqrt(along_axes));
+  return std::max({worst, std::sqrt(along_axes), jitter});
 }
 
 double AgreementLimit(const Selection& s, const SelectionRules& rules) {
@@ -239,7 +267,8 @@ Selection::Part JudgePart(const ConfigVariants& declared, const RecordCost& cost
   }
   part.start_sensitivity = std::isfinite(known.start_sensitivity)
                                ? known.start_sensitivity
-                               : StartSensitivity(declared, cost, residual_before, rules.threads);
+                               : StartSensitivity(declared, cost, residual_before, rules.threads,
+                                                  std::min(kStartJitterDraws, rules.jitter_draws));
   Selection view;
   view.noise_floor = part.noise_floor;
   view.model_floor = std::max(part.step_sensitivity, part.start_sensitivity);
@@ -833,6 +862,20 @@ void AddSpeedsPartner(const ConfigVariants& declared, const RecordCost& whole,
   // the judged part put it (fitted on the speeds too, it drifted and broke the start).
   std::vector<CandidateScore> pairs(order.size());
   const std::vector<double> held = s->chosen_fit.values.front();
+  const Selection::Part& judged_part = judged_name == "early" ? s->early : s->whole;
+  const double judged_alone = OverallRms(judged, judged.Residual(alone).squaredNorm());
+  const double judged_allowed =
+      std::hypot(judged_alone, rules.model_floor_factor * judged_part.step_sensitivity);
+  // An effect held at `at` beside another fitted on `values`.
+  const auto held_beside = [](const Effect& fitted, const Effect& other, std::vector<double> at) {
+    Effect beside = fitted;
+    beside.overrides = [f = &fitted, o = &other, at](const std::vector<double>& v) {
+      std::vector<std::string> lines = o->overrides(at);
+      for (std::string& line : f->overrides(v)) lines.push_back(std::move(line));
+      return lines;
+    };
+    return beside;
+  };
   ParallelFor(order.size(), rules.threads, [&](std::size_t k) {
     const Effect& e = *partners[order[k]];
     CandidateScore& c = pairs[k];
@@ -840,21 +883,79 @@ void AddSpeedsPartner(const ConfigVariants& declared, const RecordCost& whole,
     c.family = first.family + " + " + e.family;
     c.description = first.description + "; " + e.description;
     c.tried = true;
-    Effect beside = e;
-    beside.overrides = [&first, &e, held](const std::vector<double>& v) {
-      std::vector<std::string> lines = first.overrides(held);
-      for (std::string& line : e.overrides(v)) lines.push_back(std::move(line));
-      return lines;
-    };
-    const EffectFit partner = FitEffects(declared, speeds, {&beside}, rules.max_runs_per_start,
-                                         nullptr, {{best_start[order[k]], false}});
+    Effect beside = held_beside(e, first, held);
+    EffectFit partner = FitEffects(declared, speeds, {&beside}, rules.max_runs_per_start, nullptr,
+                                   {{best_start[order[k]], false}});
     c.fit = s->chosen_fit;
+    int evaluations = partner.evaluations;
+    // A partner that moves the judged part too (a TDB's friction turns the first bounce): the
+    // chosen effect, fitted there without it, sat where the partner's absence put it (an offset
+    // TDB fitted at (60.6, 15.3) um beside the declared friction, and the friction then 0.393 on
+    // the speeds; truth (88.5, 12.2) um and 0.316). Fitting each on its own part in turn walks
+    // down that valley the wrong way (to 104 um and 0.412). So with one parameter the partner is
+    // profiled: held at values about its fit, the chosen effect fitted again on the judged part
+    // beside each, the speeds then run; the lowest speeds whose judged part stays within what
+    // the effect alone leaves there are kept, the partner refined there on the speeds.
+    const auto judged_rms = [&](const std::vector<double>& f, const std::vector<double>& p) {
+      try {
+        return OverallRms(judged, judged.Residual(run({&first, &e}, {f, p})).squaredNorm());
+      } catch (const std::exception&) {
+        return std::numeric_limits<double>::infinity();
+      }
+    };
+    const EffectParameter& q = e.parameters.front();
+    const double p0 = partner.values.front().front();
+    if (e.parameters.size() == 1 && !q.periodic && q.quantum == 0.0 && p0 != 0.0 &&
+        !(judged_rms(held, partner.values.front()) <= judged_allowed)) {
+      constexpr std::array<double, 5> kOffsets = {-0.35, -0.2, -0.1, 0.1, 0.2};
+      std::vector<double> best_first;
+      double best_p = 0.0;
+      double best_speeds = std::numeric_limits<double>::infinity();
+      for (const double o : kOffsets) {
+        const double v = std::clamp(p0 * (1.0 + o), q.lower, q.upper);
+        const Effect again = held_beside(first, e, {v});
+        const EffectFit refit = FitEffects(declared, judged, {&again}, rules.max_runs_per_start,
+                                           nullptr, {{held, true}});
+        evaluations += refit.evaluations + 1;
+        if (refit.values.empty() || !(judged_rms(refit.values.front(), {v}) <= judged_allowed)) {
+          continue;
+        }
+        double sse = std::numeric_limits<double>::infinity();
+        try {
+          sse = speeds.Residual(run({&first, &e}, {refit.values.front(), {v}})).squaredNorm();
+        } catch (const std::exception&) {
+        }
+        if (sse < best_speeds) {
+          best_speeds = sse;
+          best_first = refit.values.front();
+          best_p = v;
+          c.fit.parameters = refit.parameters;
+        }
+      }
+      if (!best_first.empty()) {
+        c.fit.values.front() = best_first;
+        beside = held_beside(e, first, best_first);
+        EffectFit refined = FitEffects(declared, speeds, {&beside}, rules.max_runs_per_start,
+                                       nullptr, {{{best_p}, true}});
+        evaluations += refined.evaluations;
+        if (refined.values.empty() ||
+            !(judged_rms(best_first, refined.values.front()) <= judged_allowed) ||
+            !(refined.sse <= best_speeds)) {
+          refined.values = {{best_p}};
+          refined.sse = best_speeds;
+          refined.parameters = partner.parameters;
+          refined.parameters.front().value = best_p;
+          refined.parameters.front().sigma = std::numeric_limits<double>::quiet_NaN();
+        }
+        partner = std::move(refined);
+      }
+    }
     c.fit.effects.push_back(e.name);
     c.fit.values.push_back(partner.values.front());
     c.fit.parameters.insert(c.fit.parameters.end(), partner.parameters.begin(),
                             partner.parameters.end());
     c.fit.sse = partner.sse;
-    c.fit.evaluations = partner.evaluations;
+    c.fit.evaluations = evaluations;
     c.rms_after = OverallRms(speeds, c.fit.sse);
     c.bic = Bic(c.fit.sse, speeds.size(), Parameters(c.fit));
     c.delta_bic = c.bic - Bic(sse_alone, speeds.size(), Parameters(s->chosen_fit));
@@ -894,16 +995,13 @@ void AddSpeedsPartner(const ConfigVariants& declared, const RecordCost& whole,
     // sensitivity: an effect only the speeds show does not move it, and one that does was
     // not fitted there.
     {
-      const Selection::Part& part = judged_name == "early" ? s->early : s->whole;
       const double after = OverallRms(judged, judged.Residual(with).squaredNorm());
-      const double before = OverallRms(judged, judged.Residual(alone).squaredNorm());
-      const double allowed = std::hypot(before, rules.model_floor_factor * part.step_sensitivity);
-      if (after > allowed) {
+      if (after > judged_allowed) {
         harm = fmt::format(
             "{} takes the residual {} to {:.3g}, where the first effect alone "
             "leaves {:.3g} (allowed {:.3g})",
             c.name, judged_name == "early" ? "over the drop's start" : "over the whole record",
-            after, before, allowed);
+            after, judged_alone, judged_allowed);
       }
     }
     for (const PartView& o : others) {
@@ -1163,7 +1261,46 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   if (s.verdict == "partly_explained" && s.chosen.size() == 1 && on != "speeds" && speeds_cost &&
       s.speeds.compared && s.speeds.rms_after > s.speeds.limit_after &&
       judged_now.rms_after <= judged_now.limit_after) {
-    AddSpeedsPartner(declared, cost, judged, *speeds_cost, library, rules, others, on, &s);
+    // The chosen effect explains the start; the speeds may depart as a draw of the rotor's
+    // jitter when the power failed, as the declared model's can (below): runs of the chosen
+    // model with that jitter drawn, before a second effect is fitted to them. On the rigid truth
+    // rig's offset record of seed 203 the record's drop whirled backward where the fitted
+    // model's rocked, and a bearing stiffness fitted on the speeds, the offset fitted again
+    // beside it, moved the offset's y 21 % of its change off.
+    JitterDraws chosen_jitter;
+    if (rules.jitter_draws > 0) {
+      const ModelParams chosen_params =
+          WithEffects(declared, EffectsOf(s.chosen_fit, library), s.chosen_fit.values);
+      const RecordCost chosen_cost(chosen_params, cost.measurement(), cost.record(),
+                                   cost.run_options());
+      chosen_jitter = DrawJitter(chosen_cost, *speeds_cost, s.speeds.limit_after,
+                                 rules.jitter_draws, rules.threads);
+    }
+    const JitterDraws& j = chosen_jitter;
+    if (j.first_within > 0 || j.first_match > 0) {
+      s.verdict = "explained";
+      s.reason += fmt::format(
+          "; run {} of {} of the fitted model with its controller answering sensor noise of the "
+          "record's level ({:.2g} m) {}: what departs after the start is a draw of the rotor's "
+          "jitter when the power failed",
+          j.first_within > 0 ? j.first_within : j.first_match, j.draws, j.jitter_sigma_m,
+          j.first_within > 0
+              ? fmt::format("agrees with the record on the speeds ({:.3g}, limit {:.3g})",
+                            j.within_rms, s.speeds.limit_after)
+              : fmt::format("is {} as the record's drop is, where the noise-free run's is {}",
+                            j.record_mode, j.model_mode));
+    } else {
+      if (j.ran) {
+        s.reason += fmt::format(
+            "; none of {} runs of the fitted model with the rotor's jitter at the trigger drawn "
+            "agreed with the record on the speeds{}",
+            j.draws,
+            j.mode_differs ? fmt::format(" or reached its drop mode ({}; the model's {})",
+                                         j.record_mode, j.model_mode)
+                           : std::string());
+      }
+      AddSpeedsPartner(declared, cost, judged, *speeds_cost, library, rules, others, on, &s);
+    }
   }
   // A drop whose start the declared model matches and that departs after the first impacts may
   // be a draw of the rotor's jitter when the power failed: if the declared model, with that

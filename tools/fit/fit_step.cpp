@@ -73,7 +73,8 @@ FitStep ChooseFitStep(const ConfigVariants& config, const MeasurementParams& mea
   std::vector<double> start;
   std::vector<double> step;
   for (std::size_t i = 0; i < costs.size(); ++i) {
-    start.push_back(StartSensitivity(config, costs[i], reference[i], selection.threads));
+    start.push_back(StartSensitivity(config, costs[i], reference[i], selection.threads,
+                                     std::min(kStartJitterDraws, selection.jitter_draws)));
     step.push_back(step_term(i, reference[i]));
   }
   const std::vector<double> declared_step = step;
