@@ -3,7 +3,13 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <utility>
+
 #include "io/files/measured_csv.hpp"
+#include "tools/fit/effect_selection.hpp"
 
 namespace ambdrop {
 
@@ -22,7 +28,41 @@ std::unique_ptr<FitResult> FitRecord(const ConfigVariants& config, const Measure
     fit->step.why = "the declared step, as asked";
   }
   run.step_s = fit->step.step_s;
-  const RecordCost cost(declared, m, record, run);
+  // A second opinion on a departing start (closed loop from the model's own levitated state):
+  // where the declared model departs at the drop's start but agrees there from the lead
+  // window's estimate of the state at the trigger, the departure is the rotor's jitter when
+  // the power failed, and the fit takes the start from the record (trigger_state =
+  // "record_start"). Twice the median of drawn jitters spans most records, not the tail.
+  MeasurementParams measurement = m;
+  std::string second_opinion;
+  if (!m.trigger_state_from_record && !m.trigger_state_for_start && ClosedLoop(declared, m, run) &&
+      options.rules.jitter_draws > 0) {
+    const auto start_and_limit = [&](const MeasurementParams& mm) {
+      const RecordCost early(declared, mm, record, run, 3000, CostScope::kEarly);
+      const Eigen::VectorXd r = early.Residual(declared);
+      const double sens = StartSensitivity(config, early, r, options.rules.threads,
+                                           std::min(kStartJitterDraws, options.rules.jitter_draws));
+      const double limit = std::hypot(options.rules.explained_over_floor * early.NoiseFloor(),
+                                      options.rules.model_floor_factor * sens);
+      return std::pair<double, double>{OverallRms(early, r.squaredNorm()), limit};
+    };
+    const auto [own, own_limit] = start_and_limit(m);
+    if (own > own_limit) {
+      MeasurementParams estimated = m;
+      estimated.trigger_state_for_start = true;
+      const auto [from_record, record_limit] = start_and_limit(estimated);
+      if (from_record <= record_limit) {
+        measurement = estimated;
+        second_opinion = fmt::format(
+            "the drop's start departs from the model's own levitated state ({:.3g}, limit "
+            "{:.3g}) and agrees from the lead window's estimate of the state at the trigger "
+            "({:.3g}, limit {:.3g}): the rotor's jitter when the power failed; the start is "
+            "taken from the record (trigger_state = \"record_start\")",
+            own, own_limit, from_record, record_limit);
+      }
+    }
+  }
+  const RecordCost cost(declared, measurement, record, run);
   for (const std::size_t c : cost.left_out()) {
     fit->left_out.push_back(
         fmt::format("'{}' ({})", m.channels[c].column, m.channels[c].Describe(declared)));
@@ -40,6 +80,8 @@ std::unique_ptr<FitResult> FitRecord(const ConfigVariants& config, const Measure
   fit->library = EffectLibrary(config);
   fit->selection = SelectEffects(config, cost, fit->library, cost.NoiseFloor(), options.rules,
                                  options.choose_step ? &fit->step.floors : nullptr);
+  if (!second_opinion.empty())
+    fit->selection.reason = second_opinion + "; " + fit->selection.reason;
   for (const std::string& name : fit->selection.chosen) {
     for (const Effect& e : fit->library) {
       if (e.name == name) fit->chosen.push_back(&e);
@@ -48,8 +90,10 @@ std::unique_ptr<FitResult> FitRecord(const ConfigVariants& config, const Measure
   fit->fitted_overrides = EffectOverrides(fit->chosen, fit->selection.chosen_fit.values);
   fit->fitted = config.With(fit->fitted_overrides).params;
   fit->after = cost.Simulate(fit->fitted);
-  fit->residual_before = ComputeResiduals(declared, m, record, fit->before, cost.compare_from_s());
-  fit->residual_after = ComputeResiduals(declared, m, record, fit->after, cost.compare_from_s());
+  fit->residual_before =
+      ComputeResiduals(declared, measurement, record, fit->before, cost.compare_from_s());
+  fit->residual_after =
+      ComputeResiduals(declared, measurement, record, fit->after, cost.compare_from_s());
   fit->residual_before.overall = fit->selection.whole.rms_before;
   const auto share = [&](const SimulatedRecord& sim, ResidualReport* report) {
     const std::vector<double> sse = cost.ChannelSse(cost.Residual(sim));
