@@ -38,7 +38,10 @@
 #     `no_effect_needed`; the rigid rig's offset-and-friction seed 217, where the friction moves
 #     the start too and the offset fitted beside the declared friction sat 32 % low: the pair
 #     named (the friction profiled), the friction and the offset's x within 20 %, its y (a
-#     twelfth of x) within 30 % of its change.
+#     twelfth of x) within 30 % of its change; the rigid rig's clean seed 218, whose start
+#     departs from the model's own state beyond even the jitter's limit (2.6 noise floors) and
+#     agrees from the lead window's estimate: `no_effect_needed`, the start taken from the
+#     record (fit.json trigger_state "record_start").
 # Every record is fitted before the script fails, so one run shows every outcome.
 # Usage: truth_fit_subset.sh AMBDROP_BINARY SOURCE_DIR [AMBDROP_TRUTH_BINARY]
 #   (the truth binary defaults to tools/truth/ambdrop_truth beside the ambdrop binary's build
@@ -70,7 +73,8 @@ cases=("rigid_rotor_a clean 1" "rigid_rotor_a clearance_worn 4" "rigid_rotor_a s
   "$housings" "rigid_rotor_a friction_one_tdb 5 --set measurement.trigger_state=\"record_start\""
   "rigid_fourdof_c clean 1"
   "rigid_fourdof_c flux_decay_a 8" "rigid_fourdof_c misalignment_friction 17"
-  "rigid_fourdof_c side_pull 16" "rigid_fourdof_c clean 202" "rigid_rotor_a misalignment_friction 217")
+  "rigid_fourdof_c side_pull 16" "rigid_fourdof_c clean 202" "rigid_rotor_a misalignment_friction 217"
+  "rigid_rotor_a clean 218")
 for c in "${cases[@]}"; do
   read -r rig effect seed extra <<<"$c"
   run="${rig}_${effect}_$seed${extra:+_${extra//[^a-z0-9]/}}"
@@ -136,6 +140,9 @@ for case in sys.argv[4:]:
             rules = [n for n in rules if not n.startswith("cut ")]
         if rules:
             problems.append("scoring: " + "; ".join(rules))
+    if (rig, effect, seed) == ("rigid_rotor_a", "clean", "218") and \
+            fit.get("trigger_state") != "record_start":
+        problems.append(f"the start not taken from the record: {fit.get('trigger_state')}")
     draw = fit.get("jitter_draws")
     if extra == ["--jitter-draws=0"]:
         # Without the draws, the same departure after an agreeing start: what removes it makes

@@ -314,8 +314,8 @@ int FitOneRecord(const FitOptions& options, const std::string& measured_path,
   outcome.chosen = fit->chosen;
   outcome.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const Discrepancy discrepancy =
-      DescribeDiscrepancy(config.params, m, record, fit->after, fit->residual_after, selection);
+  const Discrepancy discrepancy = DescribeDiscrepancy(config.params, fit->measurement, record,
+                                                      fit->after, fit->residual_after, selection);
   outcome.discrepancy = &discrepancy;
   if (summary != nullptr) {
     summary->record = measured_path;
@@ -327,8 +327,8 @@ int FitOneRecord(const FitOptions& options, const std::string& measured_path,
   try {
     const fs::path out(out_dir);
     fs::create_directories(out);
-    WriteTextFile(out / "fit.json", FitJson(outcome, config.params, m));
-    WriteFitReport(out, outcome, config.params, m, record, fit->before, fit->after);
+    WriteTextFile(out / "fit.json", FitJson(outcome, config.params, fit->measurement));
+    WriteFitReport(out, outcome, config.params, fit->measurement, record, fit->before, fit->after);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitError;

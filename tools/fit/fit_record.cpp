@@ -62,6 +62,7 @@ std::unique_ptr<FitResult> FitRecord(const ConfigVariants& config, const Measure
       }
     }
   }
+  fit->measurement = measurement;
   const RecordCost cost(declared, measurement, record, run);
   for (const std::size_t c : cost.left_out()) {
     fit->left_out.push_back(

@@ -33,6 +33,10 @@ struct FitResult {
   ResidualReport residual_after;
   /// Channels left out of the comparison (they never move beyond their noise), described.
   std::vector<std::string> left_out;
+  /// The measurement the fit ran with: the caller's, or with the drop's start taken from the
+  /// record (trigger_state = "record_start") where the model's own state departed there and
+  /// the lead window's estimate agreed (FitRecord).
+  MeasurementParams measurement;
 };
 
 /// Throws (std::runtime_error and its kin) when the record cannot be used with the model, or
