@@ -62,6 +62,14 @@ std::unique_ptr<FitResult> FitRecord(const ConfigVariants& config, const Measure
       }
     }
   }
+  if (!second_opinion.empty() && options.choose_step) {
+    // The parts' floors were measured with the model's own state at the start; the fit now
+    // runs the start from the estimate, whose uncertainty its floor must span.
+    RecordRunOptions declared_run = options.run;
+    declared_run.rotor_cache = run.rotor_cache;
+    fit->step = ChooseFitStep(config, measurement, record, declared_run, options.rules);
+    run.step_s = fit->step.step_s;
+  }
   fit->measurement = measurement;
   const RecordCost cost(declared, measurement, record, run);
   for (const std::size_t c : cost.left_out()) {
