@@ -785,6 +785,18 @@ struct PartView {
   const Selection::Part* part;
 };
 
+// "; none of N runs of the <which> model with the rotor's jitter drawn agreed ...": why no
+// draw of the jitter took a departure.
+std::string NoDrawAgreed(const JitterDraws& j, const char* which, const char* where) {
+  return fmt::format(
+      "; none of {} runs of the {} model with the rotor's jitter at the trigger drawn agreed "
+      "with the record{}{}",
+      j.draws, which, where,
+      j.mode_differs ? fmt::format(" or reached its drop mode ({}; the model's {})", j.record_mode,
+                                   j.model_mode)
+                     : std::string());
+}
+
 // How far a part may move under any change of the model beyond its limit: its model floor
 // where the drop after the first impacts is chaotic (two runs a hair apart bounce
 // differently); none on the drop's start, which is deterministic given the state at the
@@ -1291,13 +1303,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
                             j.record_mode, j.model_mode));
     } else {
       if (j.ran) {
-        s.reason += fmt::format(
-            "; none of {} runs of the fitted model with the rotor's jitter at the trigger drawn "
-            "agreed with the record on the speeds{}",
-            j.draws,
-            j.mode_differs ? fmt::format(" or reached its drop mode ({}; the model's {})",
-                                         j.record_mode, j.model_mode)
-                           : std::string());
+        s.reason += NoDrawAgreed(j, "fitted", " on the speeds");
       }
       AddSpeedsPartner(declared, cost, judged, *speeds_cost, library, rules, others, on, &s);
     }
@@ -1341,13 +1347,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
       s.closest.clear();
       TakeNoEffect(&s);
     } else if (j.ran) {
-      s.reason += fmt::format(
-          "; none of {} runs of the declared model with the rotor's jitter at the trigger drawn "
-          "agreed with the record{}",
-          j.draws,
-          j.mode_differs ? fmt::format(" or reached its drop mode ({}; the model's {})",
-                                       j.record_mode, j.model_mode)
-                         : std::string());
+      s.reason += NoDrawAgreed(j, "declared", "");
     }
   }
   // A departure after an agreeing start that only a chaotic model removes confirms no effect.
