@@ -23,6 +23,15 @@ unshare -n bash -c "
   set -e
   ip link set lo up
   ip route add 239.0.0.0/8 dev lo
+  # hil starts once the controller answers (its one line), not after a guessed sleep: a loaded
+  # host once started it late and the rotor fell before the first answer.
+  ready() {
+    for _ in \$(seq 300); do
+      grep -q 'listening on' \"\$1\" && return 0
+      sleep 0.1
+    done
+    echo \"FAIL: the controller did not start within 30 s:\"; cat \"\$1\"; return 1
+  }
   '$controller' '$config' ${sets[*]} --idle-exit-s 1 > '$work/controller.log' 2>&1 &
   # A monitor: LCM's own logger on the live state and power channels.
   lcm-logger -q -f -c 'AMBDROP_(STATE|POWER|PLANT)' '$work/live.lcm' &
@@ -30,22 +39,24 @@ unshare -n bash -c "
   # A failed run leaves this shell at once (set -e): the logger, still holding the test's
   # output, would keep ctest waiting for it (887 s once) after the failure was reported.
   trap 'kill -KILL \$logger 2>/dev/null || true' EXIT
-  sleep 0.5
+  ready '$work/controller.log'
+  sleep 0.3  # lcm-logger says nothing when it listens; the plant description goes out first
   '$tool' hil '$config' --controller lcm ${sets[*]} --set simulation.duration_s=0.4 \
-    --rt-priority 80 --lcm-io-fifo --out '$work/out' --record '$work/run.lcm' --quiet
+    --rt-priority 80 --lcm-io-fifo --out '$work/out' --record '$work/run.lcm' --quiet ||
+    { echo '--- controller.log'; cat '$work/controller.log'; exit 1; }
   sleep 0.3
   kill -INT \$logger
   wait
   # 20 kHz in lock step on the virtual clock: the same controller process answers every sample.
   '$controller' '$config' --idle-exit-s 1 > '$work/controller20k.log' 2>&1 &
-  sleep 0.5
+  ready '$work/controller20k.log'
   '$tool' hil '$config' --controller lcm --virtual-clock --lockstep --set simulation.duration_s=0.3 \
     --set trigger.time_s=0.15 --out '$work/lockstep' --quiet
   wait
   # A scenario against the outside controller (issue 17): the power dip, in lock step; the
   # controller process knows nothing of it and must re-levitate the rotor after the restore.
   '$controller' '$config' --idle-exit-s 1 > '$work/controller_scenario.log' 2>&1 &
-  sleep 0.5
+  ready '$work/controller_scenario.log'
   '$tool' hil --scenario '$source_dir/configs/scenarios/power_dip_relevitation.toml' \
     --controller lcm --virtual-clock --lockstep --out '$work/scenario' \
     --junit '$work/scenario.xml' --quiet

@@ -19,8 +19,11 @@ if ! unshare -n true 2>/dev/null; then
 fi
 
 # LCM's short-message UDP packet: magic "LC02", a sequence number, the channel, NUL, the payload
-# (here 5 bytes: not an amb_currents_t). 100 of them over about 0.5 s, from 0.3 s on: hil starts
-# listening within that (a slow, e.g. sanitized, build may miss the first ones).
+# (here 5 bytes: not an amb_currents_t). 100 of them over about 1 s, from 0.3 s on: hil starts
+# listening within that (a slow, e.g. sanitized, build may miss the first ones). The loop runs
+# at 2 kHz: at 20 kHz its own sensor messages, looped back to its socket, filled the socket's
+# buffer whenever a loaded host held its receive thread back, and the kernel dropped all but a
+# few of these among them.
 cat >"$work/send.py" <<'PY'
 import socket, struct, time
 s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
@@ -28,14 +31,15 @@ s.setsockopt(socket.IPPROTO_IP, socket.IP_MULTICAST_TTL, 0)
 for seq in range(100):
     s.sendto(struct.pack(">II", 0x4C433032, seq) + b"AMBDROP_CURRENTS\0" + b"\1\2\3\4\5",
              ("239.255.76.67", 7667))
-    time.sleep(0.005)
+    time.sleep(0.01)
 PY
 unshare -n bash -c "
   ip link set lo up
   ip route add 239.0.0.0/8 dev lo
   ( sleep 0.3; python3 '$work/send.py' ) &
   rc=0
-  '$tool' hil '$config' --controller lcm --set simulation.duration_s=1.5 --set trigger.time_s=1.4 \
+  '$tool' hil '$config' --controller lcm --set controller.rate_Hz=2000 \
+    --set simulation.duration_s=1.5 --set trigger.time_s=1.4 \
     --out '$work/out' --quiet 2>'$work/err.txt' || rc=\$?
   echo \$rc >'$work/rc'
   wait

@@ -12,7 +12,9 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <optional>
+#include <string>
 
 #include "ambdrop_lcm/amb_currents_t.hpp"
 #include "ambdrop_lcm/sensor_readings_t.hpp"
@@ -70,6 +72,14 @@ class Responder {
   std::chrono::steady_clock::time_point last_message_ = std::chrono::steady_clock::now();
 };
 
+/// One line once the controller answers: a script or an operator starting `ambdrop hil` after
+/// it waits for this line, not for a guessed time (a loaded host once took longer than the
+/// 0.5 s a test slept, and the rotor dropped before the first answer).
+void AnnounceReady(const std::string& where) {
+  fmt::print("ambdrop-controller: listening on {}\n", where);
+  std::fflush(stdout);
+}
+
 /// The CAN variant of the loop: answers sensor frames until idle (or a signal).
 int RunOverCan(const ambdrop::LoadedConfig& config, const ambdrop::Model& model,
                const std::string& interface, double idle_exit_s) {
@@ -93,6 +103,7 @@ int RunOverCan(const ambdrop::LoadedConfig& config, const ambdrop::Model& model,
     return 1;
   }
   ambdrop::CanPidResponder responder(&*bus, &view, model, 1.0 / config.can->exchange_rate_Hz);
+  AnnounceReady("CAN " + interface);
   auto last_answer = std::chrono::steady_clock::now();
   while (!g_stop.load()) {
     if (responder.Service(std::chrono::milliseconds(100)) > 0) {
@@ -158,6 +169,7 @@ int main(int argc, char** argv) {
           const ambdrop_lcm::sensor_readings_t* msg,
           Responder* r) { r->OnSensors(rbuf, channel, msg); },
       &responder);
+  AnnounceReady("LCM " + url);
   while (!g_stop.load()) {
     lcm.handleTimeout(100);
     const double idle =
