@@ -1,5 +1,5 @@
 // The drop's start's sensitivity to the rotor's jitter at the trigger (StartSensitivity,
-// tools/fit/effect_selection.cpp), on the independent generator's 4-DOF rig (tools/truth, no
+// tools/fit/start_sensitivity.cpp), on the independent generator's 4-DOF rig (tools/truth, no
 // code shared with ambdrop) through its translation (tests/truth/rigid_fourdof_c.toml). The
 // generator's controller answers its sensors' noise; after power loss the held currents leave
 // its rotor on the magnets' negative stiffness for a millisecond and more, so the way it moved

@@ -10,6 +10,7 @@
 
 #include "tools/fit/effect_fit.hpp"
 #include "tools/fit/jitter_draws.hpp"
+#include "tools/fit/start_sensitivity.hpp"
 #include "tools/fit/start_state_shift.hpp"
 
 namespace ambdrop {
@@ -207,24 +208,6 @@ double AboveNoise(double rms, double noise_floor);
 
 /// The overall relative RMS of a residual vector of `cost` (sqrt(SSE / channels)).
 double OverallRms(const RecordCost& cost, double sse);
-
-/// The record's displacement noise before the trigger: the median of its displacement
-/// channels' noise (NoiseSigma), m; 0 without a displacement channel. What the real rotor's
-/// controller answers, and so how much it jitters when the power fails.
-double DisplacementNoiseMedian(const RecordCost& cost);
-
-/// Runs of the declared model with the rotor's jitter drawn that StartSensitivity makes on the
-/// drop's start (fewer if SelectionRules::jitter_draws is lower; none at 0).
-inline constexpr int kStartJitterDraws = 8;
-
-/// How far the declared model's prediction on `cost` (whose declared residual is
-/// `residual_before`) moves when its start is shifted by what the record cannot resolve: the
-/// model floor's start term (Selection::start_sensitivity). On the drop's start (closed loop,
-/// the model's own levitated state) that includes the median move of `jitter_draws` runs with
-/// the rotor's jitter at the trigger drawn.
-double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
-                        const Eigen::VectorXd& residual_before, int threads,
-                        int jitter_draws = kStartJitterDraws);
 
 /// Each part's model floor measured once for the fit (ChooseFitStep), at the config's step: the
 /// start sensitivity there, and how far the fit's step moves the prediction from the one at half

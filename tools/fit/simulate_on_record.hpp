@@ -54,7 +54,7 @@ struct RecordRunOptions {
   std::shared_ptr<ReducedRotorCache> rotor_cache;
   /// Open loop: added to every displacement channel's value and slope at the start before the
   /// initial state is fitted to them; the start sensitivity's probes of how closely the record's
-  /// noise pins that state (tools/fit/effect_selection.cpp).
+  /// noise pins that state (tools/fit/start_sensitivity.cpp).
   double start_position_shift_m = 0.0;
   double start_velocity_shift_m_s = 0.0;
   /// Open loop: start from this state (its time restarts at the run's start) instead of the

@@ -1,0 +1,55 @@
+#pragma once
+// What the files of the effect selection share (it was one file); not for other callers.
+#include <Eigen/Core>
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "io/config/config_variants.hpp"
+#include "tools/fit/effect_fit.hpp"
+#include "tools/fit/effect_library.hpp"
+#include "tools/fit/effect_selection.hpp"
+#include "tools/fit/record_cost.hpp"
+
+namespace ambdrop {
+
+// A part of the record not judged: its name, how a reason says where, its cost and the
+// declared model's numbers there.
+struct PartView {
+  std::string name;
+  const char* phrase;
+  const RecordCost* cost;
+  const Selection::Part* part;
+};
+
+// effect_selection.cpp
+std::vector<const Effect*> EffectsOf(const EffectFit& f, const std::vector<Effect>& library);
+
+// agreement_limit.cpp
+double ModelFloorAfter(const ConfigVariants& declared, const RecordCost& cost,
+                       const std::vector<Effect>& library, const EffectFit& f);
+Selection::Part JudgePart(const ConfigVariants& declared, const RecordCost& cost,
+                          const Eigen::VectorXd& residual_before, double noise_floor,
+                          const SelectionRules& rules, const ModelFloors::Part& known);
+double ChaosAllowance(const RecordCost& part_cost, const Selection::Part& part);
+
+// judged_part_selection.cpp
+double Bic(double sse, std::size_t n, std::size_t k);
+std::size_t Parameters(const EffectFit& f);
+Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const RecordCost* search,
+                   const Eigen::VectorXd& residual_before, const std::vector<Effect>& library,
+                   Selection s, bool at_floor, const SelectionRules& rules,
+                   const std::function<std::string(const EffectFit&, const EffectFit&)>& harm,
+                   const std::function<std::string(const EffectFit&)>& refuted,
+                   const std::function<std::string(const EffectFit&)>& against_the_rest,
+                   const std::function<std::string(const EffectFit&)>& breaks_start);
+
+// speeds_partner.cpp
+void AddSpeedsPartner(const ConfigVariants& declared, const RecordCost& whole,
+                      const RecordCost& judged, const RecordCost& speeds,
+                      const std::vector<Effect>& library, const SelectionRules& rules,
+                      const std::vector<PartView>& others, const std::string& judged_name,
+                      Selection* s);
+
+}  // namespace ambdrop
