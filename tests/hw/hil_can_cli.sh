@@ -40,7 +40,13 @@ fail() {
   exit 1
 }
 ambdrop-controller rig.toml --can vcan0 --idle-exit-s 2 > controller.log 2>&1 &
-sleep 1
+# hil starts once the controller answers (its one line), not after a guessed sleep.
+waited=0
+until grep -q 'listening on' controller.log; do
+  waited=$((waited + 1))
+  [ $waited -le 600 ] || fail "the controller did not start within 60 s"
+  sleep 0.1
+done
 candump -L vcan0,080:7FF > trigger.log &
 candump_pid=$!
 (sleep 1.3; cansend vcan0 080#01) &
