@@ -41,7 +41,10 @@
 #     twelfth of x) within 30 % of its change; the rigid rig's clean seed 218, whose start
 #     departs from the model's own state beyond even the jitter's limit (2.6 noise floors) and
 #     agrees from the lead window's estimate: `no_effect_needed`, the start taken from the
-#     record (fit.json trigger_state "record_start").
+#     record (fit.json trigger_state "record_start");
+#   - the rigid rig's static unbalance of seed 406 (6.1e-6 kg m), whose drop's start agrees and
+#     whose drop whirls as a draw of the declared model's jitter does: named and valued on the
+#     levitated time before the trigger (fit.json judged_on "levitated"), its orbit there.
 # Every record is fitted before the script fails, so one run shows every outcome.
 # Usage: truth_fit_subset.sh AMBDROP_BINARY SOURCE_DIR [AMBDROP_TRUTH_BINARY]
 #   (the truth binary defaults to tools/truth/ambdrop_truth beside the ambdrop binary's build
@@ -74,7 +77,7 @@ cases=("rigid_rotor_a clean 1" "rigid_rotor_a clearance_worn 4" "rigid_rotor_a s
   "rigid_fourdof_c clean 1"
   "rigid_fourdof_c flux_decay_a 8" "rigid_fourdof_c misalignment_friction 17"
   "rigid_fourdof_c side_pull 16" "rigid_fourdof_c clean 202" "rigid_rotor_a misalignment_friction 217"
-  "rigid_rotor_a clean 218")
+  "rigid_rotor_a clean 218" "rigid_rotor_a static_unbalance 406")
 for c in "${cases[@]}"; do
   read -r rig effect seed extra <<<"$c"
   run="${rig}_${effect}_$seed${extra:+_${extra//[^a-z0-9]/}}"
@@ -121,6 +124,8 @@ for case in sys.argv[4:]:
         problems.append(f"verdict {fit['verdict']}, expected {verdict}")
     if verdict is not None and fit["chosen"]:
         problems.append("chose " + row["chosen"] + " (expected nothing)")
+    if effect == "static_unbalance" and fit.get("judged_on") != "levitated":
+        problems.append(f"judged on {fit.get('judged_on')}, expected the levitated time")
     if (rig, effect, seed) == ("rigid_rotor_a", "misalignment_friction", "217"):
         # The pair and its values, the small y offset held to 30 % of its change.
         want = {"tdb.nde.misalignment.x_m": 0.2, "tdb.nde.misalignment.y_m": 0.3,

@@ -144,9 +144,14 @@ struct Selection {
   Part speeds;
   /// The whole cost's numbers (the top-level ones are the judged part's).
   Part whole;
+  /// The same on the levitated time before the trigger (CostScope::kLevitated, closed loop
+  /// only): each channel's mean, 1X and 2X there, from the model's own levitated state.
+  Part levitated;
   /// Which part the verdict judges, and whose numbers the top-level fields hold: "early" where
-  /// the drop's start departs from the declared model beyond its limit; else "speeds" where the
-  /// speeds depart beyond theirs by a larger factor than the whole record does; else "whole".
+  /// the drop's start departs from the declared model beyond its limit, "levitated" where the
+  /// levitated time departs beyond its own by a larger factor than the start does; else
+  /// "speeds" where the speeds depart beyond theirs by a larger factor than the whole record
+  /// does; else "whole".
   /// `explained` needs the other parts within their limits too.
   std::string judged_on = "whole";
   /// The limit the verdict on the chosen effects used: the one widened by model_floor_after,

@@ -25,6 +25,10 @@ struct PartView {
 
 // effect_selection.cpp
 std::vector<const Effect*> EffectsOf(const EffectFit& f, const std::vector<Effect>& library);
+/// The part of `s` named "whole", "early", "speeds" or "levitated" (Selection::judged_on), and
+/// how a reason says where it is.
+Selection::Part& PartNamed(Selection& s, const std::string& name);
+const char* PartPhrase(const std::string& name);
 
 // agreement_limit.cpp
 double ModelFloorAfter(const ConfigVariants& declared, const RecordCost& cost,

@@ -235,10 +235,11 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   }
   json.EndArray();
 
-  // Both parts the verdict looks at; the top-level numbers are the judged one's.
+  // The parts the verdict looks at; the top-level numbers are the judged one's.
   json.Key("judged_on").String(s.judged_on);
-  for (const auto& [name, part] : {std::pair{"whole", &s.whole}, std::pair{"early", &s.early},
-                                   std::pair{"speeds", &s.speeds}}) {
+  for (const auto& [name, part] :
+       {std::pair{"whole", &s.whole}, std::pair{"early", &s.early}, std::pair{"speeds", &s.speeds},
+        std::pair{"levitated", &s.levitated}}) {
     if (!part->compared) continue;
     json.Key(name).BeginObject();
     json.Key("rms_before").Number(part->rms_before);
@@ -356,7 +357,11 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
                                   "impact), where it departs beyond its limit"
       : s.judged_on == "speeds" ? "the speeds (rotor and races, from the trigger to the end), "
                                   "which depart further beyond their limit than the whole record"
-                                : "the whole record",
+      : s.judged_on == "levitated"
+          ? "the levitated time before the trigger (each displacement's and current's mean, 1X "
+            "and 2X there, from the model's own levitated state), which departs further beyond "
+            "its limit than the drop's start"
+          : "the whole record",
       s.rms_before, s.rms_after, s.noise_floor, AboveNoise(s.rms_before, s.noise_floor),
       AboveNoise(s.rms_after, s.noise_floor));
   md += FromRecordNote(params, m);
@@ -375,7 +380,8 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
   }
   for (const auto& [name, part] :
        {std::pair{"The whole record", &s.whole}, std::pair{"The drop's start", &s.early},
-        std::pair{"The speeds", &s.speeds}}) {
+        std::pair{"The speeds", &s.speeds},
+        std::pair{"The levitated time (mean, 1X, 2X)", &s.levitated}}) {
     if (!part->compared) continue;
     md += fmt::format(
         "- {}: {:.4g} before, {:.4g} after, agreement limit {:.3g} (noise {:.3g}, step "

@@ -221,7 +221,8 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return singles[a].bic < singles[b].bic; });
   // An explanation of the drop after its start must leave the start as the declared model had
-  // it: there the drop is deterministic, after the first impacts it may not be. On clean
+  // it (and the levitated time before the trigger, where the declared model agrees there):
+  // there the drop is deterministic, after the first impacts it may not be. On clean
   // records of the independent rigid rig the drop went into backward whirl after a start the
   // declared model matched, where the model's own drop rocked; a centre of mass 4 % off, a
   // sensor's offset or one TDB's friction flipped the model into whirl too and cut the speeds

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "tools/fit/noise_floor.hpp"
+#include "tools/fit/synchronous_blocks.hpp"
 
 namespace ambdrop {
 namespace {
@@ -97,6 +98,10 @@ std::pair<std::size_t, std::size_t> RowsIn(const MeasuredRecord& r, const Measur
 MeasurementParams MeasurementFor(const MeasurementParams& measurement, CostScope scope) {
   MeasurementParams m = measurement;
   if (m.trigger_state_for_start && scope == CostScope::kEarly) m.trigger_state_from_record = true;
+  if (scope == CostScope::kLevitated) {
+    m.trigger_state_from_record = false;
+    m.trigger_state_for_start = false;
+  }
   return m;
 }
 
@@ -118,6 +123,10 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
   settled_from_s_ = t_end - std::min((t_end - trigger_s_) / 3.0, 0.1);
   const bool early_only = scope == CostScope::kEarly;
   if (early_only) run_.end_s = std::min(run_.end_s, early_end_s_);
+  const bool levitated = scope == CostScope::kLevitated;
+  // Open loop nothing levitates the model before the trigger: no levitated part.
+  if (levitated && !closed) return;
+  if (levitated) run_.end_s = std::min(run_.end_s, trigger_s_);
   const double spin = declared.simulation.spin_speed_rad_s;
   const std::size_t rows = record.time_s.size();
   const auto first_row_at = [&](double t) {
@@ -134,6 +143,9 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
     column_.push_back(col);
     range_.push_back(0.0);
     if (scope == CostScope::kSpeeds && !SpeedLike(ch.quantity)) continue;
+    if (levitated && ch.quantity != MeasuredQuantity::kDisplacement && !CurrentLike(ch.quantity)) {
+      continue;
+    }
     // Open loop no controller runs, so nothing predicts its command: not compared.
     if (ch.quantity == MeasuredQuantity::kControllerCommand && !closed) continue;
     // power_loss = "from_record": the coil currents drive the model; they are its input.
@@ -147,7 +159,8 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
     // could compare is a mistake in the table, not a channel to drop quietly.
     const auto [window_first, window_end] =
         RowsIn(record, ch, trigger_s_, current && !closed ? trigger_row : start_row, rows);
-    if (window_first == window_end) {
+    // (The levitated part leaves out a channel whose window holds too few levitated rows.)
+    if (window_first == window_end && !levitated) {
       throw std::runtime_error(fmt::format(
           "{}: column '{}' ({}): its window ({}) holds no sample the fit can compare{}",
           record.source, ch.column, ch.Describe(declared), ch.DescribeWindow(),
@@ -155,22 +168,26 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
                              : ""));
     }
     std::vector<std::size_t> raw;
-    for (std::size_t j = window_first; j < window_end; ++j) {
+    for (std::size_t j = window_first; j < window_end && !levitated; ++j) {
       if (record.time_s[j] >= from && record.time_s[j] < to) raw.push_back(j);
     }
     std::vector<Block> blocks;
     const auto [lev_first, lev_end] = RowsIn(record, ch, trigger_s_, start_row, trigger_row);
-    if (current && closed && lev_end > lev_first + 4) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (levitated) {
+      const std::vector<double> noise =
+          SynchronousBlockNoise(record.time_s, v, lev_first, lev_end, spin);
+      if (noise.empty()) continue;  // too few turns or rows to tell noise from content
+      std::vector<std::vector<double>> k =
+          SynchronousBlockCoefficients(record.time_s, lev_first, lev_end, spin);
+      for (std::size_t i = 0; i < k.size(); ++i) {
+        blocks.push_back({c, lev_first, std::move(k[i]), 0.0, 0.0, 0.0, noise[i]});
+      }
+    } else if (current && closed && lev_end > lev_first + 4) {
       // Mean, then 1X and 2X cosine and sine over the levitated rows.
-      const std::size_t n = lev_end - lev_first;
-      for (int k = 0; k <= 4; ++k) {
-        Block b{c, lev_first, std::vector<double>(n), 0.0, 0.0, 0.0};
-        for (std::size_t i = 0; i < n; ++i) {
-          const double angle = spin * record.time_s[lev_first + i] * (k <= 2 ? 1.0 : 2.0);
-          const double basis = k == 0 ? 1.0 : (k % 2 == 1 ? std::cos(angle) : std::sin(angle));
-          b.coefficients[i] = (k == 0 ? 1.0 : 2.0) * basis / static_cast<double>(n);
-        }
-        blocks.push_back(std::move(b));
+      for (std::vector<double>& k :
+           SynchronousBlockCoefficients(record.time_s, lev_first, lev_end, spin)) {
+        blocks.push_back({c, lev_first, std::move(k), 0.0, 0.0, 0.0, nan});
       }
     }
     if (early_only && ForceLike(ch.quantity)) {
@@ -184,18 +201,18 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
         if (window.size() == per_block || i + 1 == raw.size()) {
           const double n = static_cast<double>(window.size());
           blocks.push_back(
-              {c, window.front(), std::vector<double>(window.size(), 1.0 / n), 0.0, 0.0, 0.0});
+              {c, window.front(), std::vector<double>(window.size(), 1.0 / n), 0.0, 0.0, 0.0, nan});
           window.clear();
         }
       }
       raw.clear();
     }
     const auto [settled_first, settled_end] = RowsIn(record, ch, trigger_s_, settled_row, rows);
-    if (!early_only && !Smooth(ch.quantity) && settled_end > settled_first &&
+    if (!early_only && !levitated && !Smooth(ch.quantity) && settled_end > settled_first &&
         settled_from_s_ > to) {
       const std::size_t n = settled_end - settled_first;
-      blocks.push_back(
-          {c, settled_first, std::vector<double>(n, 1.0 / static_cast<double>(n)), 0.0, 0.0, 0.0});
+      blocks.push_back({c, settled_first, std::vector<double>(n, 1.0 / static_cast<double>(n)), 0.0,
+                        0.0, 0.0, nan});
     }
     if (raw.empty() && blocks.empty()) continue;
     // Range and noise over the window alone: what lies outside it (a channel gone bad after
@@ -227,7 +244,11 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
       for (const std::size_t j : kept) samples_.push_back({c, j, weight, range});
     }
     for (Block& b : blocks) {
-      b.weight = std::sqrt(1.0 / parts) / range;
+      // Levitated blocks in units of their own noise (a millionth of the range at least: a
+      // noise-free record), so that a fit there weighs each as the record resolves it.
+      b.weight = std::isfinite(b.noise_var)
+                     ? 1.0 / std::sqrt(parts * std::max(b.noise_var, std::pow(1e-6 * range, 2)))
+                     : std::sqrt(1.0 / parts) / range;
       b.range = range;
       b.measured = Apply(b, v);
       blocks_.push_back(std::move(b));
@@ -259,6 +280,10 @@ std::vector<double> RecordCost::ChannelNoiseSse() const {
   std::vector<double> expected(column_.size(), 0.0);
   for (const Sample& s : samples_) expected[s.channel] += std::pow(sigma[s.channel] * s.weight, 2);
   for (const Block& b : blocks_) {
+    if (std::isfinite(b.noise_var)) {
+      expected[b.channel] += b.noise_var * b.weight * b.weight;
+      continue;
+    }
     double sum_sq = 0.0;
     for (const double k : b.coefficients) sum_sq += k * k;
     expected[b.channel] += std::pow(sigma[b.channel] * b.weight, 2) * sum_sq;

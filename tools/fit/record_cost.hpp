@@ -38,6 +38,21 @@ enum class CostScope {
   /// after the first impacts, where the whole cost's bouncing hides it: the speeds integrate
   /// the contact's friction and stay smooth where the displacements are chaotic.
   kSpeeds,
+  /// Only the levitated time before the trigger, closed loop, from the model's own levitated
+  /// state whatever measurement.trigger_state says, and the run stops at the trigger: each
+  /// displacement and current by its mean, 1X and 2X content there (blocks, as the levitated
+  /// currents of the other parts). What a synchronous effect (an unbalance, a runout) or a
+  /// declared number the levitated machine shows (a bias, a sensor's offset) does there is
+  /// plain, while the drop's start, whose limit the estimate of the state at the trigger
+  /// widens, sees it hardly: the static unbalance of the flexible truth rig's seed 206 moved
+  /// the levitated 1X of every sensor 30 times the clean records' departure, and fitted the
+  /// start hardly worse than a couple unbalance half a turn off. Each block is weighed by its
+  /// own noise, the record's neighbouring content (synchronous_blocks.hpp), not white noise (the
+  /// rotor's jitter, answered by the controller, puts 3 to 9 times more there): the part's noise
+  /// floor is 1, and a fit there weighs each block as the record resolves it. Weighed by their
+  /// ranges as the other parts are, the currents' 1X (a tenth of their range) outweighed the
+  /// displacements' (a thousandth) and pulled that unbalance's phase 0.13 rad off.
+  kLevitated,
 };
 
 /// The measurement a cost of `scope` runs its model with: with trigger_state = "record_start"
@@ -68,7 +83,8 @@ class RecordCost {
   std::vector<double> ChannelSse(const Eigen::VectorXd& residual) const;
 
   /// The overall relative RMS a perfect model would leave: each channel's measurement noise
-  /// (tools/fit/noise_floor.hpp, over its compared samples) through the cost's weights.
+  /// (tools/fit/noise_floor.hpp, over its compared samples) through the cost's weights; on
+  /// CostScope::kLevitated 1, each block weighed by its own noise (synchronous_blocks.hpp).
   double NoiseFloor() const;
   /// Its parts per measurement channel: the squared residual each channel's noise alone would
   /// leave (0 for one not compared). Their sum over channels, divided by channels(), is
@@ -105,6 +121,9 @@ class RecordCost {
     double weight;
     double range;
     double measured;
+    /// Its variance from the record's noise and jitter where measured (kLevitated), else NaN:
+    /// white noise through the coefficients.
+    double noise_var;
   };
   double Apply(const Block& b, const std::vector<double>& values) const;
   const ModelParams& declared_;

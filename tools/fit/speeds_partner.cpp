@@ -84,7 +84,7 @@ void AddSpeedsPartner(const ConfigVariants& declared, const RecordCost& whole,
   // the judged part put it (fitted on the speeds too, it drifted and broke the start).
   std::vector<CandidateScore> pairs(order.size());
   const std::vector<double> held = s->chosen_fit.values.front();
-  const Selection::Part& judged_part = judged_name == "early" ? s->early : s->whole;
+  const Selection::Part& judged_part = PartNamed(*s, judged_name);
   const double judged_alone = OverallRms(judged, judged.Residual(alone).squaredNorm());
   const double judged_allowed =
       std::hypot(judged_alone, rules.model_floor_factor * judged_part.step_sensitivity);
@@ -222,8 +222,7 @@ void AddSpeedsPartner(const ConfigVariants& declared, const RecordCost& whole,
         harm = fmt::format(
             "{} takes the residual {} to {:.3g}, where the first effect alone "
             "leaves {:.3g} (allowed {:.3g})",
-            c.name, judged_name == "early" ? "over the drop's start" : "over the whole record",
-            after, judged_alone, judged_allowed);
+            c.name, PartPhrase(judged_name), after, judged_alone, judged_allowed);
       }
     }
     for (const PartView& o : others) {
@@ -253,9 +252,9 @@ void AddSpeedsPartner(const ConfigVariants& declared, const RecordCost& whole,
     all_within &= part->rms_after <= std::max(part->limit, part->limit_after);
   };
   again(whole, &s->whole);
-  if (judged_name == "early") again(judged, &s->early);
+  if (judged_name != "whole") again(judged, &PartNamed(*s, judged_name));
   again(speeds, &s->speeds);
-  s->rms_after = judged_name == "early" ? s->early.rms_after : s->whole.rms_after;
+  s->rms_after = PartNamed(*s, judged_name).rms_after;
   const std::string pair_said =
       fmt::format("; {} then fitted on the speeds takes them from {:.3g} to {:.3g} (limit {:.3g})",
                   c.fit.effects.back(), rms_alone, s->speeds.rms_after, s->speeds.limit);

@@ -70,9 +70,10 @@ from pathlib import Path
 #        the true change from the declared value (VALUE_TOLERANCE); angles within 0.35 rad;
 #        zero-valued changes within ABSOLUTE_TOLERANCE;
 #     3. cut: the residual above the noise floor of the part the verdict judges falls at least
-#        3x (>= MIN_CUT): fit.json's `judged_on` names it, the whole record or the drop's start
+#        3x (>= MIN_CUT): fit.json's `judged_on` names it, the whole record, the drop's start
 #        (where the start departs; after the first impacts this rig's drop is chaotic, and its
-#        clean records leave 0.05 over the whole record, ten times the noise); older fit.json
+#        clean records leave 0.05 over the whole record, ten times the noise), the speeds or the
+#        levitated time before the trigger; older fit.json
 #        files without it: rms_before.overall_above_noise / rms_after.overall_above_noise.
 #
 # MAPPING RULE (truth keys <-> fit effects), the one place it is written down:
