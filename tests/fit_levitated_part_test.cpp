@@ -21,6 +21,7 @@
 
 #include "drop_run.hpp"
 #include "effects.hpp"
+#include "generator_record.hpp"
 #include "io/config/config_variants.hpp"
 #include "io/files/measured_record_si.hpp"
 #include "noise.hpp"
@@ -134,18 +135,6 @@ TEST(SynchronousBlocks, TooFewTurnsOrRowsGiveNoEstimate) {
   EXPECT_EQ(SynchronousBlockNoise(t, v, 0, 700, kSpin).size(), 5u);  // 7 turns
 }
 
-MeasuredRecord GeneratorRecord(const std::string& effect, std::uint64_t seed,
-                               const MeasurementParams& m, ambdrop_truth::Truth* truth) {
-  ambdrop_truth::Rig rig = ambdrop_truth::ReadRig(kSource + "/tools/truth/rigs/rigid_rotor_a.json");
-  *truth = ambdrop_truth::ApplyEffect(effect, seed, &rig);
-  const ambdrop_truth::RunResult run = ambdrop_truth::RunDrop(rig, seed, {});
-  EXPECT_TRUE(run.finite);
-  const testing::ScratchDirectory dir("fit_levitated_part");
-  const std::filesystem::path csv = dir.path() / "record.csv";
-  ambdrop_truth::WriteRecordCsv(csv, rig, run, ambdrop_truth::CsvUnits::kAcquisition);
-  return ReadMeasuredRecord(csv, m);
-}
-
 struct Levitated {
   double declared = 0.0;  // relative RMS of the declared model
   double truth = 0.0;     // of the truth's own keys
@@ -157,7 +146,7 @@ Levitated LevitatedPart(const std::string& effect, std::uint64_t seed) {
   const ConfigVariants declared = ConfigVariants::Load(toml);
   const MeasurementParams& m = declared.declared().measurement.value();
   ambdrop_truth::Truth truth;
-  const MeasuredRecord record = GeneratorRecord(effect, seed, m, &truth);
+  const MeasuredRecord record = testing::RigidGeneratorRecord(effect, seed, m, &truth);
   std::vector<std::string> lines;
   for (const auto& [key, value] : truth.ambdrop_keys) lines.push_back(key + "=" + value);
   const ConfigVariants true_keys = ConfigVariants::Load(toml, lines);

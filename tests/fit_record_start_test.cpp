@@ -21,6 +21,7 @@
 
 #include "drop_run.hpp"
 #include "effects.hpp"
+#include "generator_record.hpp"
 #include "io/config/config_variants.hpp"
 #include "io/files/measured_record_si.hpp"
 #include "record_files.hpp"
@@ -34,18 +35,6 @@ namespace ambdrop {
 namespace {
 
 const std::string kSource = AMBDROP_SOURCE_DIR;
-
-MeasuredRecord GeneratorRecord(const std::string& effect, std::uint64_t seed,
-                               const MeasurementParams& m) {
-  ambdrop_truth::Rig rig = ambdrop_truth::ReadRig(kSource + "/tools/truth/rigs/rigid_rotor_a.json");
-  ambdrop_truth::ApplyEffect(effect, seed, &rig);
-  const ambdrop_truth::RunResult run = ambdrop_truth::RunDrop(rig, seed, {});
-  EXPECT_TRUE(run.finite);
-  const testing::ScratchDirectory dir("fit_record_start");
-  const std::filesystem::path csv = dir.path() / "record.csv";
-  ambdrop_truth::WriteRecordCsv(csv, rig, run, ambdrop_truth::CsvUnits::kAcquisition);
-  return ReadMeasuredRecord(csv, m);
-}
 
 struct Runs {
   ConfigVariants config;
@@ -72,7 +61,7 @@ Runs FrictionRecordWithTheTruth() {
                        .measurement.value();
   EXPECT_TRUE(r.record_start.trigger_state_for_start);
   EXPECT_FALSE(r.record_start.trigger_state_from_record);
-  r.record = GeneratorRecord("friction_one_tdb", 5, r.model_state);
+  r.record = testing::RigidGeneratorRecord("friction_one_tdb", 5, r.model_state);
   r.run.step_s = 1e-5;  // the step the fit chooses for this rig's records
   r.run.rotor_cache = std::make_shared<ReducedRotorCache>();
   return r;
@@ -131,8 +120,8 @@ TEST(FitRecordStart, TheLeadWindowsMisfitTellsAForceTheModelLacks) {
   run.step_s = 1e-5;
   run.rotor_cache = std::make_shared<ReducedRotorCache>();
   const auto misfit = [&](const std::string& effect, std::uint64_t seed) {
-    const SimulatedRecord sim =
-        SimulateOnRecord(config.declared().params, m, GeneratorRecord(effect, seed, m), run);
+    const SimulatedRecord sim = SimulateOnRecord(
+        config.declared().params, m, testing::RigidGeneratorRecord(effect, seed, m), run);
     std::printf("%s: the lead window's samples left at %.3g times their noise\n", effect.c_str(),
                 sim.lead_misfit);
     return sim.lead_misfit;

@@ -1,0 +1,36 @@
+#pragma once
+// A record of the independent truth generator (tools/truth, no code shared with ambdrop) of the
+// rigid rig, read as `ambdrop fit` reads it: for the tests that link ambdrop::truth.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "drop_run.hpp"
+#include "effects.hpp"
+#include "io/files/measured_record_si.hpp"
+#include "record_files.hpp"
+#include "rig.hpp"
+#include "scratch_directory.hpp"
+
+namespace ambdrop::testing {
+
+/// The rigid rig's record of `effect` drawn from `seed`, in acquisition units through `m`;
+/// `truth`, if given, receives what was hidden.
+inline MeasuredRecord RigidGeneratorRecord(const std::string& effect, std::uint64_t seed,
+                                           const MeasurementParams& m,
+                                           ambdrop_truth::Truth* truth = nullptr) {
+  ambdrop_truth::Rig rig = ambdrop_truth::ReadRig(std::string(AMBDROP_SOURCE_DIR) +
+                                                  "/tools/truth/rigs/rigid_rotor_a.json");
+  const ambdrop_truth::Truth hidden = ambdrop_truth::ApplyEffect(effect, seed, &rig);
+  if (truth != nullptr) *truth = hidden;
+  const ambdrop_truth::RunResult run = ambdrop_truth::RunDrop(rig, seed, {});
+  EXPECT_TRUE(run.finite);
+  const ScratchDirectory dir("generator_record");
+  const std::filesystem::path csv = dir.path() / "record.csv";
+  ambdrop_truth::WriteRecordCsv(csv, rig, run, ambdrop_truth::CsvUnits::kAcquisition);
+  return ReadMeasuredRecord(csv, m);
+}
+
+}  // namespace ambdrop::testing
