@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -52,36 +51,6 @@ namespace {
 double ChiSquareHeadroom(std::size_t degrees_of_freedom) {
   const double dof = static_cast<double>(std::max<std::size_t>(degrees_of_freedom, 1));
   return std::sqrt(1.0 + 3.0 * std::sqrt(2.0 / dof));
-}
-
-// The verdict no_effect_needed after effects were chosen: the declared model stands, nothing
-// chosen or accepted, every part's residual after as before.
-void TakeNoEffect(Selection* s) {
-  s->verdict = "no_effect_needed";
-  s->chosen.clear();
-  s->chosen_fit = EffectFit{};
-  s->equivalent.clear();
-  s->rms_after = s->rms_before;
-  s->limit_after = s->limit;
-  s->limit_after_capped = false;
-  s->model_floor_after = 0.0;
-  for (CandidateScore& c : s->candidates) c.accepted = false;
-  for (Selection::Part* p : {&s->whole, &s->early, &s->speeds, &s->levitated}) {
-    p->rms_after = p->rms_before;
-    p->limit_after = p->limit;
-  }
-}
-
-// "; none of N runs of the <which> model with the rotor's jitter drawn agreed ...": why no
-// draw of the jitter took a departure.
-std::string NoDrawAgreed(const JitterDraws& j, const char* which, const char* where) {
-  return fmt::format(
-      "; none of {} runs of the {} model with the rotor's jitter at the trigger drawn agreed "
-      "with the record{}{}",
-      j.draws, which, where,
-      j.mode_differs ? fmt::format(" or reached its drop mode ({}; the model's {})", j.record_mode,
-                                   j.model_mode)
-                     : std::string());
 }
 
 }  // namespace
@@ -458,144 +427,22 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
       AddSpeedsPartner(declared, cost, judged, *speeds_cost, library, rules, others, on, &s);
     }
   }
-  // A drop whose start the declared model matches and that departs after the first impacts may
-  // be a draw of the rotor's jitter when the power failed: if the declared model, with that
-  // jitter drawn, agrees with the record on the judged part, or reaches the record's drop mode
-  // where the noise-free run does not (rocking where the record whirls), no effect is needed,
-  // and whatever cut the residual is not evidence. In another mode the parts after the start
-  // cannot be asked to agree sample by sample: two runs in one whirl differ by more than the
-  // limit (the chosen models' own floors were 0.06-0.10 against limits of 0.02 on the rigid
-  // rig's clean records).
-  // Not where the levitated time judges: the jitter at the trigger moves nothing before it.
+  // The revisions of the verdict (verdict_revisions.cpp says why each). The jitter and chaos
+  // ones not where the levitated time judges: the jitter at the trigger moves nothing before it.
   if (start_agrees && on != "levitated" && s.verdict != "no_effect_needed" &&
       rules.jitter_draws > 0) {
-    s.jitter = DrawJitter(cost, judged, s.limit, rules.jitter_draws, rules.threads);
-    const JitterDraws& j = s.jitter;
-    const bool within = j.first_within > 0;
-    if (within || j.first_match > 0) {
-      std::string instead;
-      for (const std::string& name : s.chosen) instead += (instead.empty() ? "" : " + ") + name;
-      const std::string what =
-          within ? fmt::format(
-                       "agrees with the record {} ({:.3g}, limit {:.3g}; the noise-free "
-                       "run leaves {:.3g})",
-                       on == "speeds" ? "on the speeds" : "over the whole record", j.within_rms,
-                       s.limit, s.rms_before)
-                 : fmt::format(
-                       "is {} as the record's drop is, where the noise-free run's is {} "
-                       "(residual {:.3g}, the noise-free run's {:.3g})",
-                       j.record_mode, j.model_mode, j.match_rms, s.rms_before);
-      s.reason = fmt::format(
-          "the declared model agrees with the drop's start ({:.3g}, limit {:.3g}), and run {} of "
-          "{} of it with its controller answering sensor noise of the record's level ({:.2g} m) "
-          "{}: what departs after the start is a draw of the rotor's jitter when the power "
-          "failed, and no effect is needed for it{}",
-          early.rms_before, early.limit, within ? j.first_within : j.first_match, j.draws,
-          j.jitter_sigma_m, what,
-          instead.empty() ? std::string()
-                          : fmt::format(" ({} was not taken: it took the residual from {:.3g} to "
-                                        "{:.3g}, {})",
-                                        instead, s.rms_before, s.rms_after, s.verdict));
-      s.closest.clear();
-      TakeNoEffect(&s);
-    } else if (j.ran) {
-      s.reason += NoDrawAgreed(j, "declared", "");
-    }
+    TakeJitterDraws(cost, judged, on, early, rules, &s);
   }
-  // A departure after an agreeing start that only a chaotic model removes confirms no effect.
-  // The models that take it within its limit there make a drop whose own prediction moves by
-  // several limits when the step is halved or a parameter nudged: inside the limit or not is
-  // then chance, and which of them "fits" says nothing of the rig. The declared model, whose
-  // own spread is small, departs for a reason none of them names: its form (a sign's
-  // regularisation, a law's shape) or the record's own start. On the flexible rig's clean
-  // records of seeds 3 and 6 (trigger state from the record, so no jitter draws) a 1 %
-  // clearance and a TDB 10 mm off were sold as partial explanations (own spreads 0.038 and
-  // 0.077 against limits of 0.018 and 0.028); no record of the three rigs' batteries with a
-  // true effect was judged so.
   if (start_agrees && on != "levitated" && s.verdict == "partly_explained" &&
       s.model_floor_after > rules.confirmable_chaos * s.limit) {
-    std::string instead;
-    for (const std::string& name : s.chosen) instead += (instead.empty() ? "" : " + ") + name;
-    s.reason = fmt::format(
-        "the declared model agrees with the drop's start ({:.3g}, limit {:.3g}) and departs "
-        "after it ({:.3g}, limit {:.3g}); {} took that to {:.3g}, but the model it makes is "
-        "chaotic (its own prediction moves by {:.3g} as the step is halved or a parameter "
-        "nudged), so the record cannot confirm it or any effect: no effect is needed, and the "
-        "departure is the declared model's (its form, or the record's own start){}",
-        early.rms_before, early.limit, s.rms_before, s.limit, instead, s.rms_after,
-        s.model_floor_after, s.reason.empty() ? "" : " (" + s.reason + ")");
-    s.closest = s.chosen;
-    s.closest_rms = s.rms_after;
-    s.unconfirmed_departure = true;
-    TakeNoEffect(&s);
+    SetAsideChaoticExplanation(early, &s);
   }
-  // A start that departs where the state at the trigger is an estimate: before the departure
-  // is evidence, the declared model gets the state its estimate allows best. The estimate's
-  // error grows as the power loss leaves the rotor unstable, and a record's noise can draw it
-  // off far beyond the bulk's spread: on the flexible rig's clean seed 8 the start departed by
-  // 0.046, 7.4 times the start sensitivity (its exact copy by 0.0008), and a DE sensor 16 mm off
-  // was named; a shift of 3.9 standard deviations took it to 0.0038, within its noise (0.0048). On
-  // that rig's battery no record with an effect came within its noise so (a TDB 60 um off: 166
-  // sigma and 0.032; a sensor gain: 26 sigma).
   if (on == "early" && early_cost && s.verdict != "no_effect_needed" &&
       early_cost->measurement().trigger_state_from_record) {
-    s.start_shift = FitStartStateShift(*early_cost, early_before, rules.threads);
-    const StartStateShift& shift = s.start_shift;
-    Selection noise_only;
-    noise_only.noise_floor = early.noise_floor;
-    noise_only.model_floor = early.step_sensitivity;
-    const double noise_limit = AgreementLimit(noise_only, rules);
-    const std::string what = fmt::format(
-        "the declared model with the state at the trigger shifted within its estimate's "
-        "uncertainty ({:.2g} standard deviations over the {:.2g} directions the start "
-        "determines, {:.2g} plausible) leaves {:.3g} on the drop's start (the record's noise "
-        "allows {:.3g})",
-        shift.sigmas, shift.directions, shift.plausible_sigmas, shift.rms_after, noise_limit);
-    if (shift.fitted && shift.sigmas <= shift.plausible_sigmas && shift.rms_after <= noise_limit) {
-      std::string instead;
-      for (const std::string& name : s.chosen) instead += (instead.empty() ? "" : " + ") + name;
-      s.reason = fmt::format(
-          "the drop's start departs ({:.3g}, limit {:.3g}), but {}: the departure is the "
-          "estimate's of where the rotor was when the power failed, and no effect is needed{}",
-          early.rms_before, early.limit, what,
-          instead.empty() ? std::string()
-                          : fmt::format(" ({} was not taken: it took the residual to {:.3g}, {})",
-                                        instead, s.rms_after, s.verdict));
-      s.closest = s.chosen;
-      s.closest_rms = s.chosen.empty() ? std::numeric_limits<double>::quiet_NaN() : s.rms_after;
-      s.start_within_state_uncertainty = true;
-      TakeNoEffect(&s);
-    } else if (shift.fitted) {
-      s.reason += "; " + what;
-    }
+    TakeStartStateShift(*early_cost, early_before, early, rules, &s);
   }
-  // What would tell the look-alikes apart: the channel where each one's prediction and the
-  // chosen one's differ most, in that channel's noise (issue 23: never pick one silently, and
-  // say which channel or test would decide).
   if (!s.chosen.empty() && !s.equivalent.empty()) {
-    const Eigen::VectorXd chosen = cost.Residual(fitted_run(s.chosen_fit));
-    const std::vector<double> noise = cost.ChannelNoiseSse();
-    std::string apart;
-    for (EquivalentEffect& e : s.equivalent) {
-      const std::vector<double> sse = cost.ChannelSse(chosen - cost.Residual(fitted_run(e.fit)));
-      for (std::size_t c = 0; c < sse.size(); ++c) {
-        if (!(noise[c] > 0.0)) continue;
-        const double over = std::sqrt(sse[c] / noise[c]);
-        if (e.separating_channel.empty() || over > e.separation_over_noise) {
-          e.separation_over_noise = over;
-          e.separating_channel = cost.measurement().channels[c].column;
-        }
-      }
-      if (e.separating_channel.empty()) continue;
-      apart += fmt::format("{}{}: '{}' ({:.2g} times its noise)", apart.empty() ? "" : ", ", e.name,
-                           e.separating_channel, e.separation_over_noise);
-    }
-    if (!apart.empty()) {
-      s.reason += "; where each look-alike's prediction departs most from the chosen one's, " +
-                  apart +
-                  " (below 1, no channel of this record tells them apart: another channel or a "
-                  "longer record would)";
-    }
+    SayWhatTellsLookAlikesApart(declared, cost, library, &s);
   }
   // With trigger_state = "record_start" the start's cost runs from the estimate.
   const RecordCost& estimated = early_cost ? *early_cost : cost;

@@ -10,6 +10,7 @@
 #include "tools/fit/effect_fit.hpp"
 #include "tools/fit/effect_library.hpp"
 #include "tools/fit/effect_selection.hpp"
+#include "tools/fit/jitter_draws.hpp"
 #include "tools/fit/record_cost.hpp"
 
 namespace ambdrop {
@@ -48,6 +49,21 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
                    const std::function<std::string(const EffectFit&)>& refuted,
                    const std::function<std::string(const EffectFit&)>& against_the_rest,
                    const std::function<std::string(const EffectFit&)>& breaks_start);
+
+// verdict_revisions.cpp: each revises `s` after the choice; the caller checks where it applies.
+void TakeNoEffect(Selection* s);
+std::string NoDrawAgreed(const JitterDraws& j, const char* which, const char* where);
+/// Where the declared model agrees with the drop's start and a later part is judged.
+void TakeJitterDraws(const RecordCost& cost, const RecordCost& judged, const std::string& on,
+                     const Selection::Part& early, const SelectionRules& rules, Selection* s);
+/// Where that start agrees and the partial explanation's model is chaotic.
+void SetAsideChaoticExplanation(const Selection::Part& early, Selection* s);
+/// Where the start judges and the state at the trigger is an estimate.
+void TakeStartStateShift(const RecordCost& early_cost, const Eigen::VectorXd& early_before,
+                         const Selection::Part& early, const SelectionRules& rules, Selection* s);
+/// Where effects were chosen beside look-alikes.
+void SayWhatTellsLookAlikesApart(const ConfigVariants& declared, const RecordCost& cost,
+                                 const std::vector<Effect>& library, Selection* s);
 
 // speeds_partner.cpp
 void AddSpeedsPartner(const ConfigVariants& declared, const RecordCost& whole,
