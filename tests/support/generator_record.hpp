@@ -1,6 +1,6 @@
 #pragma once
-// A record of the independent truth generator (tools/truth, no code shared with ambdrop) of the
-// rigid rig, read as `ambdrop fit` reads it: for the tests that link ambdrop::truth.
+// A record of the independent truth generator (tools/truth, no code shared with ambdrop), read
+// as `ambdrop fit` reads it: for the tests that link ambdrop::truth.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -16,13 +16,13 @@
 
 namespace ambdrop::testing {
 
-/// The rigid rig's record of `effect` drawn from `seed`, in acquisition units through `m`;
-/// `truth`, if given, receives what was hidden.
-inline MeasuredRecord RigidGeneratorRecord(const std::string& effect, std::uint64_t seed,
-                                           const MeasurementParams& m,
-                                           ambdrop_truth::Truth* truth = nullptr) {
+/// The record of `effect` drawn from `seed` on the generator's rig `rig` (tools/truth/rigs/
+/// RIG.json), in acquisition units through `m`; `truth`, if given, receives what was hidden.
+inline MeasuredRecord GeneratorRecord(const std::string& rig_name, const std::string& effect,
+                                      std::uint64_t seed, const MeasurementParams& m,
+                                      ambdrop_truth::Truth* truth = nullptr) {
   ambdrop_truth::Rig rig = ambdrop_truth::ReadRig(std::string(AMBDROP_SOURCE_DIR) +
-                                                  "/tools/truth/rigs/rigid_rotor_a.json");
+                                                  "/tools/truth/rigs/" + rig_name + ".json");
   const ambdrop_truth::Truth hidden = ambdrop_truth::ApplyEffect(effect, seed, &rig);
   if (truth != nullptr) *truth = hidden;
   const ambdrop_truth::RunResult run = ambdrop_truth::RunDrop(rig, seed, {});
@@ -31,6 +31,13 @@ inline MeasuredRecord RigidGeneratorRecord(const std::string& effect, std::uint6
   const std::filesystem::path csv = dir.path() / "record.csv";
   ambdrop_truth::WriteRecordCsv(csv, rig, run, ambdrop_truth::CsvUnits::kAcquisition);
   return ReadMeasuredRecord(csv, m);
+}
+
+/// The rigid rig's (rigid_rotor_a).
+inline MeasuredRecord RigidGeneratorRecord(const std::string& effect, std::uint64_t seed,
+                                           const MeasurementParams& m,
+                                           ambdrop_truth::Truth* truth = nullptr) {
+  return GeneratorRecord("rigid_rotor_a", effect, seed, m, truth);
 }
 
 }  // namespace ambdrop::testing

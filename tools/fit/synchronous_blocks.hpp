@@ -18,7 +18,7 @@ std::vector<std::vector<double>> SynchronousBlockCoefficients(const std::vector<
 /// (sensor noise, and the rotor's own jitter as the controller answers it): the channel's
 /// mean, drift, 1X and 2X are removed by least squares, and what is left is projected as the
 /// blocks project, onto neighbouring frequencies (2 and 3 frequency bins of the window off
-/// each block's, on both sides; bins 2 and 3 for the mean). Empty when the window holds fewer
+/// each block's, on both sides; bins 2 to 5 for the mean). Empty when the window holds fewer
 /// than six turns (2X's neighbours would reach 1X's) or fewer than 64 rows.
 std::vector<double> SynchronousBlockNoise(const std::vector<double>& time_s,
                                           const std::vector<double>& values, std::size_t first,
