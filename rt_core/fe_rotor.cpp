@@ -109,6 +109,7 @@ FeRotor AssembleFeRotor(const RotorParams& rotor, const std::vector<double>& sta
 
   // Shaft elements.
   const Eigen::Matrix4d& t = YzTransform();
+  double mass_moment_kg_m = 0.0;
   for (int e = 0; e + 1 < nodes; ++e) {
     const double za = fe.node_positions_m[e];
     const double L = fe.node_positions_m[e + 1] - za;
@@ -136,7 +137,9 @@ FeRotor AssembleFeRotor(const RotorParams& rotor, const std::vector<double>& sta
     const double pi = std::numbers::pi;
     const double D = s.outer_diameter_m;
     const double d = s.inner_diameter_m;
-    fe.mass_kg += s.material.density_kg_m3 * pi / 4.0 * (D * D - d * d) * L;
+    const double element_mass_kg = s.material.density_kg_m3 * pi / 4.0 * (D * D - d * d) * L;
+    fe.mass_kg += element_mass_kg;
+    mass_moment_kg_m += element_mass_kg * mid;
     fe.polar_inertia_kg_m2 +=
         s.material.density_kg_m3 * pi / 32.0 * (D * D * D * D - d * d * d * d) * L;
   }
@@ -152,8 +155,10 @@ FeRotor AssembleFeRotor(const RotorParams& rotor, const std::vector<double>& sta
     fe.gyroscopic(b + 2, b + 3) += disc.polar_inertia_kg_m2;
     fe.gyroscopic(b + 3, b + 2) -= disc.polar_inertia_kg_m2;
     fe.mass_kg += disc.mass_kg;
+    mass_moment_kg_m += disc.mass_kg * disc.position_m;
     fe.polar_inertia_kg_m2 += disc.polar_inertia_kg_m2;
   }
+  fe.centre_of_mass_m = fe.mass_kg > 0.0 ? mass_moment_kg_m / fe.mass_kg : 0.5 * fe.length_m;
   return fe;
 }
 

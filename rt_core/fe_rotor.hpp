@@ -18,6 +18,7 @@ struct FeRotor {
   double mass_kg = 0.0;
   double polar_inertia_kg_m2 = 0.0;
   double length_m = 0.0;
+  double centre_of_mass_m = 0.0;  ///< axial, of the shaft's elements and the discs together
 
   int dofs() const { return static_cast<int>(mass.rows()); }
   /// Node at axial position z (every station is meshed as a node); -1 if none.

@@ -67,6 +67,7 @@ ReducedRotor ReduceFeRotor(const FeRotor& fe, const Eigen::MatrixXd& kb, const E
   r.mass_kg = fe.mass_kg;
   r.polar_inertia_kg_m2 = fe.polar_inertia_kg_m2;
   r.length_m = fe.length_m;
+  r.centre_of_mass_m = fe.centre_of_mass_m;
   r.free_frequencies_rad_s.resize(modes);
   ModalMatrix k_modal = ModalMatrix::Zero(modes, modes);
   ModalMatrix c_modal = ModalMatrix::Zero(modes, modes);
@@ -96,6 +97,7 @@ ReducedRotor RigidReducedRotor(const RigidRotorParams& rigid,
   r.mass_kg = rigid.mass_kg;
   r.polar_inertia_kg_m2 = rigid.polar_inertia_kg_m2;
   r.node_positions_m = {rigid.centre_of_mass_m};
+  r.centre_of_mass_m = rigid.centre_of_mass_m;
   // q = (x, theta_y | y, theta_x) scaled by sqrt(mass): the xz plane first, then the yz plane.
   const double sm = 1.0 / std::sqrt(rigid.mass_kg);
   const double si = 1.0 / std::sqrt(rigid.transverse_inertia_kg_m2);

@@ -26,6 +26,7 @@ struct ReducedRotor {
   double mass_kg = 0.0;
   double polar_inertia_kg_m2 = 0.0;
   double length_m = 0.0;
+  double centre_of_mass_m = 0.0;  ///< axial position
 
   /// Physical DOF (x, y, theta_x, theta_y per node) = basis * q, and the node positions, kept to
   /// evaluate station shapes anywhere (linear between nodes for the translations).

@@ -63,5 +63,33 @@ TEST(Seed000Rotor, ConfigMatchesThePublishedRig) {
   EXPECT_NEAR(unit.squaredNorm(), r.mass_kg, 1e-6 * r.mass_kg);
 }
 
+// The centre of mass the reduced rotor carries (the fit's static unbalance sits there): summed
+// per FE element, it is the sections' (each uniform, from 0 one after another) and discs' own
+// first moment over their mass, however the stations split the sections.
+TEST(Seed000Rotor, CentreOfMassIsTheSectionsAndDiscsFirstMoment) {
+  const ModelParams p = testing::LoadTestConfig("jarroux2019_industrial.toml");
+  double mass = 0.0;
+  double moment = 0.0;
+  double start = 0.0;
+  for (const ShaftSection& s : p.rotor.sections) {
+    const double m =
+        s.material.density_kg_m3 * std::numbers::pi / 4.0 *
+        (s.outer_diameter_m * s.outer_diameter_m - s.inner_diameter_m * s.inner_diameter_m) *
+        s.length_m;
+    mass += m;
+    moment += m * (start + 0.5 * s.length_m);
+    start += s.length_m;
+  }
+  for (const Disc& d : p.rotor.discs) {
+    mass += d.mass_kg;
+    moment += d.mass_kg * d.position_m;
+  }
+  const ReducedRotor r = BuildReducedRotor(p);
+  EXPECT_NEAR(r.mass_kg, mass, 1e-9 * mass);
+  EXPECT_NEAR(r.centre_of_mass_m, moment / mass, 1e-9);
+  // Not the shaft's middle: the rotor is not symmetric.
+  EXPECT_GT(std::abs(r.centre_of_mass_m - 0.5 * r.length_m), 1e-3);
+}
+
 }  // namespace
 }  // namespace ambdrop

@@ -233,37 +233,14 @@ Effect UnbalanceIn(std::vector<UnbalancePlane> planes, std::string name, std::st
   return e;
 }
 
-// The rotor's centre of mass along its axis: the rigid rotor's declared one, or the shaft's
-// sections (from 0, one after another) and discs summed.
-double CentreOfMass(const RotorParams& rotor) {
-  if (rotor.kind == RotorKind::kRigid) return rotor.rigid.centre_of_mass_m;
-  double mass = 0.0;
-  double moment = 0.0;
-  double start = 0.0;
-  for (const ShaftSection& s : rotor.sections) {
-    const double area =
-        0.25 * kPi *
-        (s.outer_diameter_m * s.outer_diameter_m - s.inner_diameter_m * s.inner_diameter_m);
-    const double m = s.material.density_kg_m3 * area * s.length_m;
-    mass += m;
-    moment += m * (start + 0.5 * s.length_m);
-    start += s.length_m;
-  }
-  for (const Disc& d : rotor.discs) {
-    mass += d.mass_kg;
-    moment += d.mass_kg * d.position_m;
-  }
-  return mass > 0.0 ? moment / mass : 0.5 * start;
-}
-
-Effect Unbalance(const ModelParams& declared) {
+Effect Unbalance(double centre_of_mass_m) {
   // One plane through the rotor's centre of mass: a static unbalance, the principal axis moved
   // parallel to itself. Its moment is the couple unbalance's (below); together, as a pair, they
   // make any unbalance of a rigid rotor. Midway between the TDBs instead, as it was, it carried
   // a moment wherever the centre of mass is not there: on the 4-DOF truth rig (TDBs at 0.03 and
   // 0.68 m, centre of mass at 0.46 m) the static unbalance of seed 206 fitted the levitated
   // orbit to 0.0066 at half its size (limit 0.0055; the truth's own keys 0.0030).
-  const double position = CentreOfMass(declared.rotor);
+  const double position = centre_of_mass_m;
   return UnbalanceIn(
       {{"fitted", position, 0.0}}, "unbalance",
       fmt::format("static unbalance at {:.4g} m (mass x eccentricity, phase)", position));
@@ -543,17 +520,13 @@ Effect RotorCoastDown(const char* law, const char* key, double scale) {
   return e;
 }
 
-void AddCoastDownEffects(const ModelParams& declared, std::vector<Effect>* effects) {
+void AddCoastDownEffects(const ModelParams& declared, const ReducedRotor* rotor,
+                         std::vector<Effect>* effects) {
   // Declared, its keys are refitted as the registry's other numbers are.
   if (declared.rotor.coast_down.enabled) return;
   const double w0 = declared.simulation.spin_speed_rad_s;
-  if (!(w0 > 0.0)) return;
-  double ip = 0.0;
-  try {
-    ip = BuildModel(declared).rotor.polar_inertia_kg_m2;
-  } catch (const std::exception&) {
-    return;  // the fit reports the declared model's own failure
-  }
+  if (!(w0 > 0.0) || rotor == nullptr) return;
+  const double ip = rotor->polar_inertia_kg_m2;
   if (!(ip > 0.0)) return;
   effects->push_back(RotorCoastDown("constant", "constant_torque_N_m", ip * w0));
   effects->push_back(RotorCoastDown("viscous", "viscous_N_m_s", ip));
@@ -561,13 +534,9 @@ void AddCoastDownEffects(const ModelParams& declared, std::vector<Effect>* effec
 }
 
 // The rotor's weight (N), 0 where the declared model cannot be built (the fit reports that).
-double RotorWeightN(const ModelParams& declared) {
-  if (!declared.gravity.enabled) return 0.0;
-  try {
-    return BuildModel(declared).rotor.mass_kg * declared.gravity.acceleration_m_s2;
-  } catch (const std::exception&) {
-    return 0.0;
-  }
+double RotorWeightN(const ModelParams& declared, const ReducedRotor* rotor) {
+  if (!declared.gravity.enabled || rotor == nullptr) return 0.0;
+  return rotor->mass_kg * declared.gravity.acceleration_m_s2;
 }
 
 // A TDB's declared linear ribbon: the 4-DOF TDB's Kelvin-Voigt one, or the contact-law TDB's
@@ -771,6 +740,14 @@ std::vector<Effect> EffectLibrary(const ConfigVariants& variants, bool only_fami
   const LoadedConfig& config = variants.declared();
   const ModelParams& declared = config.params;
   std::vector<Effect> effects;
+  // The declared rotor, built once: its centre of mass, inertia and weight place and size
+  // candidates below. None where the declared model cannot be built (the fit reports that).
+  std::optional<ReducedRotor> built;
+  try {
+    built = BuildModel(declared).rotor;
+  } catch (const std::exception&) {
+  }
+  const ReducedRotor* rotor = built ? &*built : nullptr;
   const double clearance = SmallestClearance(declared);
   for (const TdbParams& t : declared.tdbs) effects.push_back(TdbMisalignment(t));
   for (const TdbParams& t : declared.tdbs) effects.push_back(TdbClearance(t));
@@ -784,9 +761,9 @@ std::vector<Effect> EffectLibrary(const ConfigVariants& variants, bool only_fami
       }
     }
   }
-  effects.push_back(Unbalance(declared));
-  // Only where the TDB planes are apart, and there is room for its two masses.
   const auto [lo, hi] = TdbSpan(declared);
+  effects.push_back(Unbalance(rotor != nullptr ? rotor->centre_of_mass_m : 0.5 * (lo + hi)));
+  // Only where the TDB planes are apart, and there is room for its two masses.
   if (hi > lo && declared.unbalances.size() + 3 <= static_cast<std::size_t>(kMaxUnbalances)) {
     effects.push_back(CoupleUnbalance(declared));
   }
@@ -819,9 +796,9 @@ std::vector<Effect> EffectLibrary(const ConfigVariants& variants, bool only_fami
     if (HasDragTorque(t)) effects.push_back(TdbDrag(t));
   }
   AddRaceSpinEffects(config, &effects);
-  AddCoastDownEffects(declared, &effects);
+  AddCoastDownEffects(declared, rotor, &effects);
   // Ribbon laws replace a declared linear ribbon (issue 15: the contact-law TDB's too).
-  const double share_N = RotorWeightN(declared) / static_cast<double>(declared.tdbs.size());
+  const double share_N = RotorWeightN(declared, rotor) / static_cast<double>(declared.tdbs.size());
   for (const TdbParams& t : declared.tdbs) {
     const std::optional<LinearRibbon> ribbon = LinearRibbonOf(t);
     if (!ribbon) continue;

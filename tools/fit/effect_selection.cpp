@@ -28,6 +28,11 @@ std::vector<const Effect*> EffectsOf(const EffectFit& f, const std::vector<Effec
   return effects;
 }
 
+ModelParams FittedParams(const ConfigVariants& declared, const std::vector<Effect>& library,
+                         const EffectFit& f) {
+  return WithEffects(declared, EffectsOf(f, library), f.values);
+}
+
 Selection::Part& PartNamed(Selection& s, const std::string& name) {
   return name == "early"       ? s.early
          : name == "speeds"    ? s.speeds
@@ -188,7 +193,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   };
   std::vector<PartOf> others = others_for(on);
   const auto fitted_run = [&](const EffectFit& f) {
-    return cost.Simulate(WithEffects(declared, EffectsOf(f, library), f.values));
+    return cost.Simulate(FittedParams(declared, library, f));
   };
   // A second effect fitted on one part must not buy its cut there by breaking another: the
   // speeds alone say nothing of where the rotor sits, and on a record whose speeds were nearly
@@ -331,8 +336,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
     // against 0.016.
     const auto meets_start = [&](const Selection& sel) {
       if (sel.chosen.empty()) return false;
-      const ModelParams params =
-          WithEffects(declared, EffectsOf(sel.chosen_fit, library), sel.chosen_fit.values);
+      const ModelParams params = FittedParams(declared, library, sel.chosen_fit);
       const Eigen::VectorXd start = early_cost->Residual(params);
       if (OverallRms(*early_cost, start.squaredNorm()) <= early.limit) return true;
       if (!early_cost->measurement().trigger_state_from_record) return false;
@@ -406,8 +410,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
     // beside it, moved the offset's y 21 % of its change off.
     JitterDraws chosen_jitter;
     if (rules.jitter_draws > 0) {
-      const ModelParams chosen_params =
-          WithEffects(declared, EffectsOf(s.chosen_fit, library), s.chosen_fit.values);
+      const ModelParams chosen_params = FittedParams(declared, library, s.chosen_fit);
       const RecordCost chosen_cost(chosen_params, cost.measurement(), cost.record(),
                                    cost.run_options());
       chosen_jitter = DrawJitter(chosen_cost, *speeds_cost, s.speeds.limit_after,

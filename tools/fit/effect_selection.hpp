@@ -148,10 +148,10 @@ struct Selection {
   /// only): each channel's mean, 1X and 2X there, from the model's own levitated state.
   Part levitated;
   /// Which part the verdict judges, and whose numbers the top-level fields hold: "early" where
-  /// the drop's start departs from the declared model beyond its limit, "levitated" where the
-  /// levitated time departs beyond its own by a larger factor than the start does; else
-  /// "speeds" where the speeds depart beyond theirs by a larger factor than the whole record
-  /// does; else "whole".
+  /// the drop's start departs from the declared model beyond its limit; else whichever of
+  /// "levitated", "speeds" and "whole" departs beyond its limit by the largest factor ("whole"
+  /// where none departs). Where the start and the levitated time both depart, each judges in
+  /// turn and the choice that agrees better with both is kept.
   /// `explained` needs the other parts within their limits too.
   std::string judged_on = "whole";
   /// The limit the verdict on the chosen effects used: the one widened by model_floor_after,

@@ -26,6 +26,9 @@ struct PartView {
 
 // effect_selection.cpp
 std::vector<const Effect*> EffectsOf(const EffectFit& f, const std::vector<Effect>& library);
+/// The declared model with the effects `f` names at its values.
+ModelParams FittedParams(const ConfigVariants& declared, const std::vector<Effect>& library,
+                         const EffectFit& f);
 /// The part of `s` named "whole", "early", "speeds" or "levitated" (Selection::judged_on), and
 /// how a reason says where it is.
 Selection::Part& PartNamed(Selection& s, const std::string& name);

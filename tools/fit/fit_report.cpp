@@ -359,8 +359,8 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
                                   "which depart further beyond their limit than the whole record"
       : s.judged_on == "levitated"
           ? "the levitated time before the trigger (each displacement's and current's mean, 1X "
-            "and 2X there, from the model's own levitated state), which departs further beyond "
-            "its limit than the drop's start"
+            "and 2X there, from the model's own levitated state), where it departs beyond its "
+            "limit"
           : "the whole record",
       s.rms_before, s.rms_after, s.noise_floor, AboveNoise(s.rms_before, s.noise_floor),
       AboveNoise(s.rms_after, s.noise_floor));

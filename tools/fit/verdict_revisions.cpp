@@ -167,7 +167,7 @@ void TakeStartStateShift(const RecordCost& early_cost, const Eigen::VectorXd& ea
 void SayWhatTellsLookAlikesApart(const ConfigVariants& declared, const RecordCost& cost,
                                  const std::vector<Effect>& library, Selection* s) {
   const auto fitted_run = [&](const EffectFit& f) {
-    return cost.Simulate(WithEffects(declared, EffectsOf(f, library), f.values));
+    return cost.Simulate(FittedParams(declared, library, f));
   };
   const Eigen::VectorXd chosen = cost.Residual(fitted_run(s->chosen_fit));
   const std::vector<double> noise = cost.ChannelNoiseSse();
