@@ -52,7 +52,7 @@ asan() {
 }
 
 # libFuzzer (clang) on every decoder: the corpus and past crashes replayed, then each target
-# fuzzed for AMBDROP_FUZZ_SECONDS (20 s each, two at a time; tests/fuzz/README.md runs them
+# fuzzed for AMBDROP_FUZZ_SECONDS (10 s each, two at a time; tests/fuzz/README.md runs them
 # longer).
 fuzz() {
   CXX=clang++-14 cmake -S . -B build-fuzz -G Ninja -DAMBDROP_FUZZ=ON -DCMAKE_BUILD_TYPE=Debug \

@@ -7,12 +7,11 @@
 
 #include "rt_core/tdb_common.hpp"
 #include "tools/fit/noise_floor.hpp"
+#include "tools/fit/not_a_number.hpp"
 #include "tools/fit/whirl_classifier.hpp"
 
 namespace ambdrop {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::size_t RowAt(const MeasuredRecord& r, double t) {
   return static_cast<std::size_t>(std::lower_bound(r.time_s.begin(), r.time_s.end(), t) -

@@ -7,10 +7,10 @@
 #include <numbers>
 #include <unsupported/Eigen/LevenbergMarquardt>
 
+#include "tools/fit/not_a_number.hpp"
+
 namespace ambdrop {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 struct Flat {
   const Effect* effect;

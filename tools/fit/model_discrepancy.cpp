@@ -9,10 +9,10 @@
 #include <set>
 #include <tuple>
 
+#include "tools/fit/not_a_number.hpp"
+
 namespace ambdrop {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Rows of the record with time in [from_s, to_s) where the model predicts a value.
 struct Rows {

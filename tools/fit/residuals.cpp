@@ -4,10 +4,10 @@
 #include <cmath>
 #include <limits>
 
+#include "tools/fit/not_a_number.hpp"
+
 namespace ambdrop {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 struct Accumulator {
   double sum_sq = 0.0;

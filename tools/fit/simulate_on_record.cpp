@@ -22,11 +22,10 @@
 #include "rt_core/power_loss_drive.hpp"
 #include "tools/fit/held_current.hpp"
 #include "tools/fit/lead_state_estimate.hpp"
+#include "tools/fit/not_a_number.hpp"
 
 namespace ambdrop {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Linear interpolation of column `c` at time t (held beyond the ends).
 double ValueAt(const MeasuredRecord& r, int c, double t) {

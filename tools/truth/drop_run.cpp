@@ -15,8 +15,6 @@ namespace ambdrop_truth {
 
 namespace {
 
-constexpr double kRpmPerRadPerS = 60.0 / (2.0 * std::numbers::pi);
-
 /// The control current that makes an AMB axis pull `force_N` at displacement u (Newton on
 /// seed 003 Eq. (2), which is quadratic in it).
 double CurrentForForce(const AmbRig& a, double force_N, double u_m) {

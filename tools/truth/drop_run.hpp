@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,9 @@
 #include "rig.hpp"
 
 namespace ambdrop_truth {
+
+/// A speed in rpm per the same in rad/s (the record's speed columns are in rpm unless --si).
+inline constexpr double kRpmPerRadPerS = 60.0 / (2.0 * std::numbers::pi);
 
 /// One acquisition sample, SI.
 struct RecordRow {

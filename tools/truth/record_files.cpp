@@ -12,8 +12,6 @@ namespace ambdrop_truth {
 
 namespace {
 
-constexpr double kRpmPerRadPerS = 60.0 / (2.0 * std::numbers::pi);
-
 std::string Quoted(const std::string& text) {
   std::string out = "\"";
   for (const char c : text) {
