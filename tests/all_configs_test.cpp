@@ -7,7 +7,7 @@
 #include "io/config/config_loader.hpp"
 #include "rt_core/model.hpp"
 
-namespace ambdrop {
+namespace ambdrop::all_configs_test {
 namespace {
 
 TEST(AllConfigs, LoadBuildAndRun) {
@@ -27,4 +27,4 @@ TEST(AllConfigs, LoadBuildAndRun) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::all_configs_test

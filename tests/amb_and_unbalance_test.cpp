@@ -9,7 +9,7 @@
 #include "rt_core/simulator.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::amb_and_unbalance_test {
 namespace {
 
 // Symmetric rigid rotor, centre of mass at 0.5 m, supports at 0.1 and 0.9 m.
@@ -104,4 +104,4 @@ TEST(Unbalance, SteadyStateResponseMatchesTheAnalyticalAmplitude) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::amb_and_unbalance_test

@@ -7,7 +7,7 @@
 
 #include "rt_core/amb_force.hpp"
 
-namespace ambdrop {
+namespace ambdrop::amb_force_law_test {
 namespace {
 
 ElectromagnetParams Seed003() {
@@ -99,4 +99,4 @@ TEST(FeedForward, CurrentForTheStaticLoad) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::amb_force_law_test

@@ -15,7 +15,7 @@
 #include "rt_core/power_loss_drive.hpp"
 #include "rt_core/simulator.hpp"
 
-namespace ambdrop {
+namespace ambdrop::amb_power_loss_test {
 namespace {
 
 constexpr double kMass_kg = 10.0;
@@ -304,4 +304,4 @@ TEST(PowerLossLaws, ExponentialIsTodaysFluxDecay) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::amb_power_loss_test

@@ -7,7 +7,7 @@
 
 #include "controller_if/controller/amplifier_loop.hpp"
 
-namespace ambdrop {
+namespace ambdrop::amplifier_loop_test {
 namespace {
 
 constexpr double kT = 5e-5;
@@ -62,4 +62,4 @@ TEST(AmplifierLoop, SlewLimitBoundsTheCurrentRate) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::amplifier_loop_test

@@ -17,7 +17,7 @@
 #include "rt_core/hertz_line_contact.hpp"
 #include "rt_core/slip_friction.hpp"
 
-namespace ambdrop {
+namespace ambdrop::ball_bearing_tdb_test {
 namespace {
 
 using S = BallBearingTdb;
@@ -417,4 +417,4 @@ TEST(BallBearingTdbStep, AllocationFreeAndBitIdentical) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::ball_bearing_tdb_test

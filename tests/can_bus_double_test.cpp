@@ -19,7 +19,7 @@
 #include "can_filter_cases.hpp"
 #include "malloc_guard.hpp"
 
-namespace ambdrop {
+namespace ambdrop::can_bus_double_test {
 namespace {
 
 using std::chrono::milliseconds;
@@ -424,4 +424,4 @@ TEST(CanBusDouble, SendAndReceiveDoNotAllocate) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::can_bus_double_test

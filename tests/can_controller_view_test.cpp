@@ -12,7 +12,7 @@
 #include "malloc_guard.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::can_controller_view_test {
 namespace {
 
 class ControllerFrameViewTest : public ::testing::Test {
@@ -161,4 +161,4 @@ TEST_F(ControllerFrameViewTest, DecodeAndEncodeDoNotAllocate) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::can_controller_view_test

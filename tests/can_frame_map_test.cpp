@@ -20,7 +20,7 @@
 #include "io/config/config_loader.hpp"
 #include "malloc_guard.hpp"
 
-namespace ambdrop {
+namespace ambdrop::can_frame_map_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -905,4 +905,4 @@ TEST(CanConfigErrors, DocumentLevel) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::can_frame_map_test

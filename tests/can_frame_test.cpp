@@ -11,7 +11,7 @@
 #include <random>
 #include <vector>
 
-namespace ambdrop {
+namespace ambdrop::can_frame_test {
 namespace {
 
 using Record = std::array<std::uint8_t, kCanFdMtu>;
@@ -251,4 +251,4 @@ TEST(CanFrameWire, FdLengthsAndDlcs) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::can_frame_test

@@ -18,7 +18,7 @@
 #include "rt_core/simulator.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::catcher_bearing_test {
 namespace {
 
 using C = CatcherBearingTdb;
@@ -335,4 +335,4 @@ TEST(CatcherBearingStep, NoHeapAllocationAndBitIdenticalRepeats) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::catcher_bearing_test

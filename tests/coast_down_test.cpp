@@ -16,7 +16,7 @@
 #include "rt_core/model.hpp"
 #include "rt_core/simulator.hpp"
 
-namespace ambdrop {
+namespace ambdrop::coast_down_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -280,4 +280,4 @@ TEST(CoastDownRuleOverride, BadValueFromTheCommandLineNamesTheOverride) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::coast_down_test

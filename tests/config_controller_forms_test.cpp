@@ -8,7 +8,7 @@
 #include "io/config/config_loader.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::config_controller_forms_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -164,4 +164,4 @@ TEST(ConfigControllerForms, KindPicksTheForm) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::config_controller_forms_test

@@ -10,7 +10,7 @@
 #include "io/config/config_loader.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::config_four_dof_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -141,4 +141,4 @@ inner_race_mass_kg = -0.4
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::config_four_dof_test

@@ -9,7 +9,7 @@
 #include "io/config/config_loader.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::config_hil_keys_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -220,4 +220,4 @@ TEST(ConfigBase, ErrorsNameTheFileTheyAreIn) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::config_hil_keys_test

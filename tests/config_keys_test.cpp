@@ -20,7 +20,7 @@
 #include "io/config/toml_reader.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::config_keys_test {
 namespace {
 
 std::map<std::string, ConfigKey> ByPath(const std::vector<ConfigKey>& keys) {
@@ -333,4 +333,4 @@ TEST(ConfigKeys, EveryDeclaredPhysicalKeyIsReachedByItsSetPath) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::config_keys_test

@@ -14,7 +14,7 @@
 
 #include "scratch_directory.hpp"
 
-namespace ambdrop {
+namespace ambdrop::config_loader_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -870,4 +870,4 @@ TEST(ConfigSyntax, DuplicateKeyIsAParseError) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::config_loader_test

@@ -12,7 +12,7 @@
 #include "io/config/config_loader.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::config_measurement_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -404,4 +404,4 @@ INSTANTIATE_TEST_SUITE_P(Rules, MeasurementRule, ::testing::ValuesIn(AllCases())
                          });
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::config_measurement_test

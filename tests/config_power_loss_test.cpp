@@ -10,7 +10,7 @@
 #include "io/config/config_loader.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::config_power_loss_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -237,4 +237,4 @@ TEST(ConfigPowerLoss, TheRampsBiasCurrentOnlyWhereTheLawLacksOne) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::config_power_loss_test

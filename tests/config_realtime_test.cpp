@@ -7,7 +7,7 @@
 #include "io/config/config_loader.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::config_realtime_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -72,4 +72,4 @@ TEST(ConfigRealtime, Rules) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::config_realtime_test

@@ -7,7 +7,7 @@
 #include "io/config/config_loader.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::config_scenario_test {
 namespace {
 
 std::string Rig() {
@@ -96,4 +96,4 @@ TEST(ConfigScenario, PowerEventsNeedTheRigsTriggerOff) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::config_scenario_test

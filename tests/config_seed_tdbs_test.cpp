@@ -9,7 +9,7 @@
 #include "io/config/config_loader.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::config_seed_tdbs_test {
 namespace {
 
 using ::testing::AllOf;
@@ -105,4 +105,4 @@ TEST(ConfigSeedTdbs, CatcherBearingErrorsNameKeyAndExpectation) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::config_seed_tdbs_test

@@ -16,7 +16,7 @@
 #include "rt_core/contact_law_tdb.hpp"
 #include "rt_core/ribbon_dahl.hpp"
 
-namespace ambdrop {
+namespace ambdrop::contact_law_race_mass_test {
 namespace {
 
 constexpr double kClearance = 0.2e-3;
@@ -225,4 +225,4 @@ TEST(ContactLawRaceMass, StepAllocationFreeAndBitIdentical) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::contact_law_race_mass_test

@@ -19,7 +19,7 @@
 #include "rt_core/ribbon_dahl.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::contact_law_ribbon_test {
 namespace {
 
 using ::testing::AllOf;
@@ -324,4 +324,4 @@ TEST(ConfigContactLawRaceMass, ReadWithGravityAndItsDampingMayBeZero) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::contact_law_ribbon_test

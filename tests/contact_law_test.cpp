@@ -6,7 +6,7 @@
 
 #include "rt_core/contact_law_tdb.hpp"
 
-namespace ambdrop {
+namespace ambdrop::contact_law_test {
 namespace {
 
 TdbParams Tdb() {
@@ -118,4 +118,4 @@ TEST(ContactLaw, DissipativeContactNeverAddsEnergy) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::contact_law_test

@@ -12,7 +12,7 @@
 #include "rt_core/model.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::controller_forms_rig_test {
 namespace {
 
 const std::vector<std::string> kPdNotch = {
@@ -85,4 +85,4 @@ TEST(ControllerForms, DelayShiftsTheCommandsByExactlyItsSamples) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::controller_forms_rig_test

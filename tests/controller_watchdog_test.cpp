@@ -20,7 +20,7 @@
 #define AMBDROP_SKIP_WITHOUT_MALLOC_HOOKS() (void)0
 #endif
 
-namespace ambdrop {
+namespace ambdrop::controller_watchdog_test {
 namespace {
 
 constexpr std::int64_t kTimeout = 1'000;  // ns
@@ -245,4 +245,4 @@ TEST(ControllerWatchdog, CheckAndFeedDoNotAllocate) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::controller_watchdog_test

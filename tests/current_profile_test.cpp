@@ -10,7 +10,7 @@
 #include "malloc_guard.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::current_profile_test {
 namespace {
 
 // The largest deviation of the kept points' interpolation from every sample of the series.
@@ -105,4 +105,4 @@ TEST(ProfileControllerLink, SendsTheProfileAtTheTimeOfTheLastSampleWithoutAlloca
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::current_profile_test

@@ -9,7 +9,7 @@
 
 #include "rt_core/ribbon_dahl.hpp"
 
-namespace ambdrop {
+namespace ambdrop::dahl_envelope_test {
 namespace {
 
 DahlRibbonParams Ribbon() {
@@ -137,4 +137,4 @@ TEST(DahlRibbon, SmallerThresholdDissipatesLess) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::dahl_envelope_test

@@ -10,7 +10,7 @@
 #include <limits>
 #include <numbers>
 
-namespace ambdrop {
+namespace ambdrop::deterministic_exp_test {
 namespace {
 
 // Distance in units in the last place between two positive finite doubles.
@@ -77,4 +77,4 @@ TEST(DeterministicExp, OverflowUnderflowAndNaN) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::deterministic_exp_test

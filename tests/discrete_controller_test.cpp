@@ -14,7 +14,7 @@
 #include "controller_if/controller/controller_discretisation.hpp"
 #include "controller_if/controller/discrete_controller.hpp"
 
-namespace ambdrop {
+namespace ambdrop::discrete_controller_test {
 namespace {
 
 using Complex = std::complex<double>;
@@ -192,4 +192,4 @@ TEST(DiscreteController, AntiWindupRules) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::discrete_controller_test

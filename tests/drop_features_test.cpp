@@ -11,7 +11,7 @@
 #include "test_configs.hpp"
 #include "tools/fit/drop_features.hpp"
 
-namespace ambdrop {
+namespace ambdrop::drop_features_test {
 namespace {
 
 constexpr double kDt = 5e-5;  // 20 kHz
@@ -144,4 +144,4 @@ TEST(DropFeatures, ReadAlikeFromRecordAndModel) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::drop_features_test

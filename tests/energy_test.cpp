@@ -10,7 +10,7 @@
 #include "rt_core/simulator.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::energy_test {
 namespace {
 
 // Mechanical energy about the static equilibrium q0 = K^-1 F_gravity (M = I): the constant
@@ -65,4 +65,4 @@ TEST(Energy, ModalDampingOnlyEverRemovesEnergy) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::energy_test

@@ -16,7 +16,7 @@
 #include "tools/fit/effect_fit.hpp"
 #include "tools/fit/effect_library.hpp"
 
-namespace ambdrop {
+namespace ambdrop::fit_effect_overrides_test {
 namespace {
 
 // The value sets an effect is applied at: its probe, its first starts, and each parameter at
@@ -187,4 +187,4 @@ TEST(FitEffectOverrides, NumbersAreWrittenToReadBackExactly) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::fit_effect_overrides_test

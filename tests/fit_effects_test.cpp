@@ -25,7 +25,7 @@
 #include "tools/fit/fit_record.hpp"
 #include "tools/fit/measured_record_maker.hpp"
 
-namespace ambdrop {
+namespace ambdrop::fit_effects_test {
 namespace {
 
 constexpr const char* kRig = "jarroux2019_industrial_pid.toml";
@@ -666,4 +666,4 @@ TEST(FitVerdicts, AnEffectOutsideTheCandidatesIsNotClaimedExplained) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::fit_effects_test

@@ -17,7 +17,7 @@
 #include "tools/fit/residuals.hpp"
 #include "tools/fit/simulate_on_record.hpp"
 
-namespace ambdrop {
+namespace ambdrop::fit_from_record_test {
 namespace {
 
 constexpr const char* kRig = "jarroux2019_industrial_pid.toml";
@@ -161,4 +161,4 @@ TEST(FitFromRecord, RecordedCurrentsStandInForALawTheModelGetsWrong) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::fit_from_record_test

@@ -13,7 +13,7 @@
 #include "tools/fit/measured_record_maker.hpp"
 #include "tools/fit/simulate_on_record.hpp"
 
-namespace ambdrop {
+namespace ambdrop::fit_jitter_draws_test {
 namespace {
 
 constexpr double kSigma_m = 3e-7;  // the rig sheet's displacement noise
@@ -83,4 +83,4 @@ TEST(JitterDraws, TheControllerAnsweringNoiseJittersTheRotorAndEachSeedIsOneDraw
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::fit_jitter_draws_test

@@ -34,7 +34,7 @@
 #include "tools/fit/reduced_rotor_cache.hpp"
 #include "tools/fit/synchronous_blocks.hpp"
 
-namespace ambdrop {
+namespace ambdrop::fit_levitated_part_test {
 namespace {
 
 const std::string kSource = AMBDROP_SOURCE_DIR;
@@ -194,4 +194,4 @@ TEST(FitLevitatedPart, AStaticUnbalanceDepartsWhileLevitatedAndItsTruthAgrees) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::fit_levitated_part_test

@@ -21,7 +21,7 @@
 #include "tools/fit/effect_selection.hpp"
 #include "tools/fit/measured_record_maker.hpp"
 
-namespace ambdrop {
+namespace ambdrop::fit_other_rigs_test {
 namespace {
 
 struct Rig {
@@ -208,4 +208,4 @@ TEST(FitOtherRigs, FlexibleRotorFindsItsKineticFrictionCoefficient) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::fit_other_rigs_test

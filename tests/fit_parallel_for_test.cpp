@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace ambdrop {
+namespace ambdrop::fit_parallel_for_test {
 namespace {
 
 TEST(FitParallelFor, EveryIndexRunsOnceAndResultsLandByIndex) {
@@ -52,4 +52,4 @@ TEST(FitParallelFor, TheFirstFailureByIndexIsTheOneReported) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::fit_parallel_for_test

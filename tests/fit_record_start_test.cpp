@@ -31,7 +31,7 @@
 #include "tools/fit/record_cost.hpp"
 #include "tools/fit/reduced_rotor_cache.hpp"
 
-namespace ambdrop {
+namespace ambdrop::fit_record_start_test {
 namespace {
 
 const std::string kSource = AMBDROP_SOURCE_DIR;
@@ -137,4 +137,4 @@ TEST(FitRecordStart, TheLeadWindowsMisfitTellsAForceTheModelLacks) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::fit_record_start_test

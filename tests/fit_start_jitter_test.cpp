@@ -28,7 +28,7 @@
 #include "tools/fit/record_cost.hpp"
 #include "tools/fit/reduced_rotor_cache.hpp"
 
-namespace ambdrop {
+namespace ambdrop::fit_start_jitter_test {
 namespace {
 
 const std::string kSource = AMBDROP_SOURCE_DIR;
@@ -81,4 +81,4 @@ TEST(FitStartJitter, TheStartsLimitHoldsACleanRecordsJitterAndStillSeesAWornClea
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::fit_start_jitter_test

@@ -22,7 +22,7 @@
 #include "tools/fit/measured_record_maker.hpp"
 #include "tools/fit/simulate_on_record.hpp"
 
-namespace ambdrop {
+namespace ambdrop::fit_trigger_state_test {
 namespace {
 
 constexpr const char* kRig = "jarroux2019_industrial_pid.toml";
@@ -197,4 +197,4 @@ TEST(FitTriggerState, TheLawsFitPinsTheHeldCurrent) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::fit_trigger_state_test

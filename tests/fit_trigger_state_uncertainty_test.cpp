@@ -31,7 +31,7 @@
 #include "tools/fit/reduced_rotor_cache.hpp"
 #include "tools/fit/start_state_shift.hpp"
 
-namespace ambdrop {
+namespace ambdrop::fit_trigger_state_uncertainty_test {
 namespace {
 
 const std::string kSource = AMBDROP_SOURCE_DIR;
@@ -169,4 +169,4 @@ TEST(FitTriggerStateUncertainty, ACleanStartIsWithinTheEstimatesReachAnOffsetTdb
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::fit_trigger_state_uncertainty_test

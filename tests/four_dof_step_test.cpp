@@ -12,7 +12,7 @@
 #include "rt_core/simulator.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::four_dof_step_test {
 namespace {
 
 struct Variant {
@@ -58,4 +58,4 @@ TEST(FourDofStep, StateHoldsTheRacesAndTheDahlForces) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::four_dof_step_test

@@ -14,7 +14,7 @@
 #include "rt_core/four_dof_tdb.hpp"
 #include "rt_core/ribbon_dahl.hpp"
 
-namespace ambdrop {
+namespace ambdrop::four_dof_tdb_test {
 namespace {
 
 using S = FourDofTdb;
@@ -360,9 +360,9 @@ TEST(FourDofTdbEnergy, DahlNeverReturnsMoreThanItReceived) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::four_dof_tdb_test
 
-namespace ambdrop {
+namespace ambdrop::four_dof_tdb_test {
 namespace {
 
 // The housing contact switched off (issue 23 item 5): a load that pushes the races further than
@@ -409,4 +409,4 @@ TEST(FourDofTdb, HousingContactSwitchedOffLetsTheOuterRaceTravelOn) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::four_dof_tdb_test

@@ -8,7 +8,7 @@
 #include "rt_core/modal_analysis.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::friswell_validation_test {
 namespace {
 
 void ExpectFrequencies(const std::vector<double>& got, const std::vector<double>& published) {
@@ -35,4 +35,4 @@ TEST(FriswellExample591, FrequenciesAt4000Rpm) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::friswell_validation_test

@@ -23,7 +23,7 @@
 #include "io/gpio/gpiod_lines.hpp"
 #include "malloc_guard.hpp"
 
-namespace ambdrop {
+namespace ambdrop::gpio_sim_test {
 namespace {
 
 using std::chrono::milliseconds;
@@ -382,4 +382,4 @@ TEST_F(GpioSimTest, TheEventPathDoesNotAllocate) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::gpio_sim_test

@@ -18,7 +18,7 @@
 #include "io/gpio/gpio_double.hpp"
 #include "malloc_guard.hpp"
 
-namespace ambdrop {
+namespace ambdrop::gpio_trigger_test {
 namespace {
 
 using std::chrono::milliseconds;
@@ -510,4 +510,4 @@ TEST(GpioTriggerTest, EventsAreHandledWithoutHeapAllocation) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::gpio_trigger_test

@@ -49,7 +49,7 @@
 #include "tools/record/run_record_reader.hpp"
 #include "tools/record/sensor_diff.hpp"
 
-namespace ambdrop {
+namespace ambdrop::hil_can_e2e_test {
 namespace {
 
 constexpr char kInterface[] = "vcan0";
@@ -657,4 +657,4 @@ INSTANTIATE_TEST_SUITE_P(Transports, HilCanE2e,
                          ::testing::Values(Transport::kHost, Transport::kKernel), Name);
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::hil_can_e2e_test

@@ -18,7 +18,7 @@
 #include "malloc_guard.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::hil_catch_up_test {
 namespace {
 
 Model PidRig(double duration_s, double trigger_s) {
@@ -167,4 +167,4 @@ TEST(HilCatchUp, CatchingUpDoesNotAllocate) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::hil_catch_up_test

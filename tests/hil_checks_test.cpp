@@ -17,7 +17,7 @@
 #include "test_configs.hpp"
 #include "tools/cli/hil_checks.hpp"
 
-namespace ambdrop {
+namespace ambdrop::hil_checks_test {
 namespace {
 
 // The reference controller whose answers reach the emulator only for every `keep`-th sample:
@@ -124,4 +124,4 @@ TEST(HilChecks, ALinkThatLosesTwoAnswersInThreeFailsTheAnsweredFraction) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::hil_checks_test

@@ -17,7 +17,7 @@
 #include "test_configs.hpp"
 #include "tools/hil/hil_links.hpp"
 
-namespace ambdrop {
+namespace ambdrop::hil_lcm_rejects_test {
 namespace {
 
 ambdrop_lcm::amb_currents_t Currents(std::int64_t sequence, double x_A) {
@@ -82,4 +82,4 @@ TEST(HilLcmRejects, EachKindIsCountedAndReported) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::hil_lcm_rejects_test

@@ -15,7 +15,7 @@
 #include "malloc_guard.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::hil_session_test {
 namespace {
 
 Model PidRig(double duration_s, std::vector<std::string> overrides = {}) {
@@ -196,4 +196,4 @@ TEST(HilSession, ASessionResumedFromAnothersRunStateGoesOnBitForBit) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::hil_session_test

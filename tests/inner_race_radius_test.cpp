@@ -18,7 +18,7 @@
 #include "rt_core/tdb_factory.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::inner_race_radius_test {
 namespace {
 
 using ::testing::AllOf;
@@ -200,4 +200,4 @@ TEST(InnerRaceRadius, SpinUpEndsAtJournalRadiusOverRaceRadius) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::inner_race_radius_test

@@ -28,7 +28,7 @@
 #include "tools/hil/lcm_controller_link.hpp"
 #include "tools/hil/lcm_live_state.hpp"
 
-namespace ambdrop {
+namespace ambdrop::lcm_controller_link_test {
 namespace {
 
 template <typename F>
@@ -271,4 +271,4 @@ TEST(LcmLiveState, AMonitorSeesTheRunAndItsPowerEventsAsTheyHappen) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::lcm_controller_link_test

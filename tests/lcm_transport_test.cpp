@@ -30,7 +30,7 @@
 #include "io/lcm/lcm_transport.hpp"
 #include "malloc_guard.hpp"
 
-namespace ambdrop {
+namespace ambdrop::lcm_transport_test {
 namespace {
 
 using std::chrono::milliseconds;
@@ -544,4 +544,4 @@ TEST(LcmEndpoint, RejectsBadSetup) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::lcm_transport_test

@@ -47,7 +47,7 @@
 
 #include "io/lcm/lcm_transport.hpp"
 
-namespace ambdrop {
+namespace ambdrop::lcm_udpm_netns_test {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -465,4 +465,4 @@ TEST(LcmUdpmNetns, TwoProcessesEchoCurrentsAsSensorsAndAnswerATrigger) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::lcm_udpm_netns_test

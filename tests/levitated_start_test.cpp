@@ -17,7 +17,7 @@
 #include "rt_core/model.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::levitated_start_test {
 namespace {
 
 // The truth generator's rigid rig (tests/truth/rigid_rotor_a.toml): electromagnet AMBs, a
@@ -225,4 +225,4 @@ TEST(EquilibriumStart, EveryRigWithoutOffsetsKeepsTheReferenceStart) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::levitated_start_test

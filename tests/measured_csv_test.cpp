@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-namespace ambdrop {
+namespace ambdrop::measured_csv_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -228,4 +228,4 @@ TEST_F(MeasuredCsv, WriterRefusesWhatTheReaderWouldRefuse) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::measured_csv_test

@@ -18,7 +18,7 @@
 #include "test_configs.hpp"
 #include "tools/fit/measured_record_maker.hpp"
 
-namespace ambdrop {
+namespace ambdrop::measured_record_maker_test {
 namespace {
 
 constexpr const char* kRig = "jarroux2019_industrial_pid.toml";
@@ -412,4 +412,4 @@ TEST(MeasuredRecordMaker, TableReadsBackThroughTheLoader) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::measured_record_maker_test

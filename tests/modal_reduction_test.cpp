@@ -11,7 +11,7 @@
 #include "rt_core/modal_reduction.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::modal_reduction_test {
 namespace {
 
 TEST(ModalReduction, SupportedFrequenciesConvergeAsModesAreAdded) {
@@ -92,4 +92,4 @@ TEST(Seed000Rotor, CentreOfMassIsTheSectionsAndDiscsFirstMoment) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::modal_reduction_test

@@ -14,7 +14,7 @@
 #include "tools/fit/record_cost.hpp"
 #include "tools/fit/residuals.hpp"
 
-namespace ambdrop {
+namespace ambdrop::model_discrepancy_test {
 namespace {
 
 constexpr const char* kRig = "jarroux2019_industrial_pid.toml";
@@ -98,4 +98,4 @@ TEST(ModelDiscrepancy, RecordsOfOneRigShareWhatTheModelLacks) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::model_discrepancy_test

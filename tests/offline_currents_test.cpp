@@ -12,7 +12,7 @@
 #include "rt_core/amb_force.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::offline_currents_test {
 namespace {
 
 struct Row {
@@ -72,4 +72,4 @@ TEST(OfflineCurrents, CoilCurrentsFollowTheCommandThenDecay) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::offline_currents_test

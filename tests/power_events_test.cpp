@@ -10,7 +10,7 @@
 #include "rt_core/model.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::power_events_test {
 namespace {
 
 struct Trace {
@@ -90,4 +90,4 @@ TEST(PowerState, FrozenCurrentsAndFluxDecay) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::power_events_test

@@ -15,7 +15,7 @@
 #include "rt_core/simulator.hpp"
 #include "rt_core/tdb_common.hpp"
 
-namespace ambdrop {
+namespace ambdrop::race_drag_regularisation_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -169,4 +169,4 @@ TEST(RaceDragRegularisation, KeyMustBePositiveAndFinite) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::race_drag_regularisation_test

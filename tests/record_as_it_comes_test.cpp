@@ -22,7 +22,7 @@
 #include "tools/fit/residuals.hpp"
 #include "tools/fit/simulate_on_record.hpp"
 
-namespace ambdrop {
+namespace ambdrop::record_as_it_comes_test {
 namespace {
 
 constexpr const char* kRig = "jarroux2019_industrial_pid.toml";
@@ -423,4 +423,4 @@ TEST(RecordAsItComes, OpenLoopHoldsTheLevitatedCurrentAtATriggerBetweenSamples) 
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::record_as_it_comes_test

@@ -10,7 +10,7 @@
 #include "tools/fit/measured_record_maker.hpp"
 #include "tools/fit/simulate_on_record.hpp"
 
-namespace ambdrop {
+namespace ambdrop::record_trigger_detect_test {
 namespace {
 
 double DetectedTrigger(double truth_trigger_s, double* sample_s) {
@@ -42,4 +42,4 @@ TEST(RecordTriggerDetect, WithinHalfASampleBetweenSamples) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::record_trigger_detect_test

@@ -12,7 +12,7 @@
 #include "test_configs.hpp"
 #include "tools/fit/reduced_rotor_cache.hpp"
 
-namespace ambdrop {
+namespace ambdrop::reduced_rotor_cache_test {
 namespace {
 
 ModelParams LoadTestConfigForCache() {
@@ -93,4 +93,4 @@ TEST(ReducedRotorCache, ThreadsShareOneRotor) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::reduced_rotor_cache_test

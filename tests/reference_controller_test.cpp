@@ -10,7 +10,7 @@
 #include "rt_core/model.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::reference_controller_test {
 namespace {
 
 struct DropTrace {
@@ -77,4 +77,4 @@ TEST(PidAxis, PushesBackAndIntegratesAwayAStaticError) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::reference_controller_test

@@ -19,7 +19,7 @@
 #include "scratch_directory.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::rig_sheet_keys_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -282,4 +282,4 @@ bias_current_A = 2.0
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::rig_sheet_keys_test

@@ -8,7 +8,7 @@
 #include "rt_core/model.hpp"
 #include "rt_core/simulator.hpp"
 
-namespace ambdrop {
+namespace ambdrop::rigid_drop_test {
 namespace {
 
 ModelParams DropRig() {
@@ -77,4 +77,4 @@ TEST(RigidDrop, SettlesAtTheContactLawStaticPenetration) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::rigid_drop_test

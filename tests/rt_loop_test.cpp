@@ -41,7 +41,7 @@
 #define AMBDROP_SKIP_WITHOUT_MALLOC_HOOKS() (void)0
 #endif
 
-namespace ambdrop {
+namespace ambdrop::rt_loop_test {
 namespace {
 
 // ASan and TSan intercept mlockall and make it a no-op that returns 0 (locking their shadow
@@ -858,4 +858,4 @@ TEST(RtThrottling, ReadsTheKernelSettings) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::rt_loop_test

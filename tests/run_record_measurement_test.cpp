@@ -24,7 +24,7 @@
 #include "tools/record/run_record_reader.hpp"
 #include "tools/record/run_record_writer.hpp"
 
-namespace ambdrop {
+namespace ambdrop::run_record_measurement_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -270,4 +270,4 @@ TEST(RunRecordMeasurement, WhatTheRecordLacksIsLeftOutOrRefused) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::run_record_measurement_test

@@ -21,7 +21,7 @@
 #include "tools/record/run_record_writer.hpp"
 #include "tools/record/sensor_diff.hpp"
 
-namespace ambdrop {
+namespace ambdrop::run_record_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -337,4 +337,4 @@ TEST(RunRecord, ChangedFrictionDiffersOnlyFromTheFirstContactOn) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::run_record_test

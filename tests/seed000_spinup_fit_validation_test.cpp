@@ -11,7 +11,7 @@
 #include "test_configs.hpp"
 #include "tools/fit/spinup_fit.hpp"
 
-namespace ambdrop {
+namespace ambdrop::seed000_spinup_fit_validation_test {
 namespace {
 
 TEST(Seed000SpinUpFit, OneParameterExplainsTheMeasuredSpinUpTimes) {
@@ -40,4 +40,4 @@ TEST(Seed000SpinUpFit, OneParameterExplainsTheMeasuredSpinUpTimes) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::seed000_spinup_fit_validation_test

@@ -14,7 +14,7 @@
 #include "tools/validation/validation_cases.hpp"
 #include "validation_asserts.hpp"
 
-namespace ambdrop {
+namespace ambdrop::seed000_validation_test {
 namespace {
 
 TEST(Seed000, Table3SpinUpTimesAt6500Rpm) {
@@ -26,4 +26,4 @@ TEST(Seed000, TdbModelsDropAtRest) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::seed000_validation_test

@@ -22,7 +22,7 @@
 #include "rt_core/simulator.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::seed001_tdb_test {
 namespace {
 
 using S = FourDofTdb;
@@ -281,4 +281,4 @@ TEST(Seed001Step, RepeatedRunsAreBitIdentical) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::seed001_tdb_test

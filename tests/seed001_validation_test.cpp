@@ -23,7 +23,7 @@
 #include "tools/validation/validation_cases.hpp"
 #include "validation_asserts.hpp"
 
-namespace ambdrop {
+namespace ambdrop::seed001_validation_test {
 namespace {
 
 using Seed001 = testing::ValidationCaseTest<&Seed001Trends>;
@@ -58,4 +58,4 @@ TEST_F(Seed001, AfterTheTransientTheRotorRocksOrWhirlsBackward) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::seed001_validation_test

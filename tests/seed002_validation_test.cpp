@@ -22,7 +22,7 @@
 #include "tools/validation/validation_cases.hpp"
 #include "validation_asserts.hpp"
 
-namespace ambdrop {
+namespace ambdrop::seed002_validation_test {
 namespace {
 
 using Seed002 = testing::ValidationCaseTest<&Seed002DropSpeeds>;
@@ -40,4 +40,4 @@ TEST_F(Seed002, PeakContactForcesMatchThePaper) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::seed002_validation_test

@@ -23,7 +23,7 @@
 #include "tools/validation/validation_cases.hpp"
 #include "validation_asserts.hpp"
 
-namespace ambdrop {
+namespace ambdrop::seed003_validation_test {
 namespace {
 
 using Seed003 = testing::ValidationCaseTest<&Seed003DoubleDecker>;
@@ -51,4 +51,4 @@ TEST_F(Seed003, DoubleDeckerLowersTheVibrationAmplitude) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::seed003_validation_test

@@ -16,7 +16,7 @@
 #include "tools/validation/validation_cases.hpp"
 #include "validation_asserts.hpp"
 
-namespace ambdrop {
+namespace ambdrop::seed004_validation_test {
 namespace {
 
 using Seed004 = testing::ValidationCaseTest<&Seed004MetalRubberRing>;
@@ -37,4 +37,4 @@ TEST_F(Seed004, RecommendedRingBeatsLowerRingDamping) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::seed004_validation_test

@@ -9,7 +9,7 @@
 #include "controller_if/boundary/portable_random.hpp"
 #include "controller_if/boundary/sensor_emulator.hpp"
 
-namespace ambdrop {
+namespace ambdrop::sensor_emulator_test {
 namespace {
 
 Observation At(double x, double y, double angle = 0.0) {
@@ -193,4 +193,4 @@ TEST(SensorEmulator, AdcCounts) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::sensor_emulator_test

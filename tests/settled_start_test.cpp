@@ -19,7 +19,7 @@
 #include "tools/fit/record_cost.hpp"
 #include "tools/fit/simulate_on_record.hpp"
 
-namespace ambdrop {
+namespace ambdrop::settled_start_test {
 namespace {
 
 constexpr const char* kRig = "jarroux2019_industrial_pid.toml";
@@ -175,4 +175,4 @@ TEST(SettledStart, NeedsTheInProcessController) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::settled_start_test

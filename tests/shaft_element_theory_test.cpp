@@ -15,7 +15,7 @@
 #include "rt_core/fe_rotor.hpp"
 #include "rt_core/natural_frequencies.hpp"
 
-namespace ambdrop {
+namespace ambdrop::shaft_element_theory_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -299,4 +299,4 @@ centre_of_mass_m = 0
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::shaft_element_theory_test

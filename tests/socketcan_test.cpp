@@ -26,7 +26,7 @@
 #include "io/config/config_can.hpp"
 #include "malloc_guard.hpp"
 
-namespace ambdrop {
+namespace ambdrop::socketcan_test {
 namespace {
 
 using std::chrono::milliseconds;
@@ -487,4 +487,4 @@ TEST_F(SocketCan, SendAndReceiveDoNotAllocate) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::socketcan_test

@@ -22,7 +22,7 @@
 #define AMBDROP_SKIP_WITHOUT_MALLOC_HOOKS() (void)0
 #endif
 
-namespace ambdrop {
+namespace ambdrop::spsc_ring_test {
 namespace {
 
 TEST(SpscRing, EmptyRing) {
@@ -188,4 +188,4 @@ TEST(SpscRing, TwoThreadsDropWhenFullButKeepOrder) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::spsc_ring_test

@@ -15,7 +15,7 @@
 #include "malloc_guard.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::step_driver_test {
 namespace {
 
 // A profile-like source: a fixed command that moves with each sample taken (so that the
@@ -156,4 +156,4 @@ TEST(StepDriver, StepsDoNotAllocate) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::step_driver_test

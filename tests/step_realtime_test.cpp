@@ -11,7 +11,7 @@
 #include "rt_core/simulator.hpp"
 #include "test_configs.hpp"
 
-namespace ambdrop {
+namespace ambdrop::step_realtime_test {
 namespace {
 
 // Seed-000 rig with the drop early so contacts, friction and spin-up all happen in the window.
@@ -54,4 +54,4 @@ TEST(Step, DivergenceIsReportedNotHidden) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::step_realtime_test

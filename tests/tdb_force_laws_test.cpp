@@ -10,7 +10,7 @@
 #include "rt_core/ribbon_dahl.hpp"
 #include "rt_core/ribbon_kelvin_voigt.hpp"
 
-namespace ambdrop {
+namespace ambdrop::tdb_force_laws_test {
 namespace {
 
 TEST(HuntCrossley, LinearExponentAsPrinted) {
@@ -144,4 +144,4 @@ TEST(DahlRibbon, RateEq1RelaxesTowardsTheEnvelopeTheMotionSelects) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::tdb_force_laws_test

@@ -11,7 +11,7 @@
 #include "rt_core/natural_frequencies.hpp"
 #include "rt_core/timoshenko_element.hpp"
 
-namespace ambdrop {
+namespace ambdrop::timoshenko_beam_test {
 namespace {
 
 struct Beam {
@@ -157,4 +157,4 @@ TEST(TimoshenkoBeam, AStationBesideANodeMovesTheModelByAHair) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::timoshenko_beam_test

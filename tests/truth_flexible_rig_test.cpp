@@ -21,7 +21,7 @@
 #include "rig.hpp"
 #include "rotor_modes.hpp"
 
-namespace ambdrop_truth {
+namespace ambdrop_truth::truth_flexible_rig_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -343,4 +343,4 @@ TEST(TruthFlexibleRig, DeclaredOffListsThisRigsNumbersAndEachMovesTheRecord) {
 }
 
 }  // namespace
-}  // namespace ambdrop_truth
+}  // namespace ambdrop_truth::truth_flexible_rig_test

@@ -18,7 +18,7 @@
 #include "rotor_modes.hpp"
 #include "rt_core/modal_analysis.hpp"
 
-namespace ambdrop {
+namespace ambdrop::truth_flexible_translation_test {
 namespace {
 
 // The first three free-free bending frequencies (rad/s) of each side (ambdrop lists each once
@@ -83,4 +83,4 @@ TEST(TruthFlexibleTranslation, EveryDeclaredNumberLoadsAndTheShaftsMoveAlike) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::truth_flexible_translation_test

@@ -17,7 +17,7 @@
 #include "rig.hpp"
 #include "rt_core/four_dof_tdb.hpp"
 
-namespace ambdrop {
+namespace ambdrop::truth_fourdof_translation_test {
 namespace {
 
 const std::string kSource = AMBDROP_SOURCE_DIR;
@@ -86,4 +86,4 @@ TEST(TruthFourDofTranslation, TheRacesSagAlikeInBothCodes) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::truth_fourdof_translation_test

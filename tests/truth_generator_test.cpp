@@ -25,7 +25,7 @@
 #include "rig.hpp"
 #include "tdb_contact.hpp"
 
-namespace ambdrop_truth {
+namespace ambdrop_truth::truth_generator_test {
 namespace {
 
 Rig RigA() {
@@ -524,4 +524,4 @@ TEST(TruthGeneratorDeclaredOff, ADrawThatDoesNotLevitateIsDrawnAgain) {
 }
 
 }  // namespace
-}  // namespace ambdrop_truth
+}  // namespace ambdrop_truth::truth_generator_test

@@ -22,7 +22,7 @@
 #include "scratch_directory.hpp"
 #include "tools/fit/simulate_on_record.hpp"
 
-namespace ambdrop {
+namespace ambdrop::truth_lead_estimate_test {
 namespace {
 
 // The first 8 ms after the trigger of every displacement channel (before the first impact,
@@ -84,4 +84,4 @@ TEST(TruthLeadEstimate, TheGeneratorsJitterAtTheTriggerPredictsItsDrop) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::truth_lead_estimate_test

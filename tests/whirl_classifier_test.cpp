@@ -11,7 +11,7 @@
 #include "tools/fit/whirl_classifier.hpp"
 #include "tools/validation/run_summary.hpp"
 
-namespace ambdrop {
+namespace ambdrop::whirl_classifier_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -119,4 +119,4 @@ TEST(RunSummaryWhirl, ClassifiesTheSecondHalfAfterTheTrigger) {
 }
 
 }  // namespace
-}  // namespace ambdrop
+}  // namespace ambdrop::whirl_classifier_test
