@@ -44,7 +44,16 @@
 #     record (fit.json trigger_state "record_start");
 #   - the rigid rig's static unbalance of seed 406 (6.1e-6 kg m), whose drop's start agrees and
 #     whose drop whirls as a draw of the declared model's jitter does: named and valued on the
-#     levitated time before the trigger (fit.json judged_on "levitated"), its orbit there.
+#     levitated time before the trigger (fit.json judged_on "levitated"), its orbit there;
+#   - the rigid rig's offset NDE TDB of seed 203, whose drop whirls backward where the fitted
+#     offset's noise-free drop rocks: one run in about 25 of the fitted model with its jitter
+#     drawn (64 runs, four times the declared model's) agrees with its speeds, so the offset
+#     alone is named and valued; with 16 none did, and a contact stiffness fitted on the speeds
+#     beside it moved the offset's y 21 % of its change off;
+#   - the rigid rig's heavier NDE race of seed 215: a Palmgren load torque fits its speeds best
+#     and a drag torque nearly as well, and the race's inertia (the truth, at its range's end)
+#     agrees with the record too, within the agreement limit: listed as equivalent with its
+#     value, so the record's look-alikes are named and the truth among them.
 # Every record is fitted before the script fails, so one run shows every outcome.
 # Usage: truth_fit_subset.sh AMBDROP_BINARY SOURCE_DIR [AMBDROP_TRUTH_BINARY]
 #   (the truth binary defaults to tools/truth/ambdrop_truth beside the ambdrop binary's build
@@ -77,7 +86,8 @@ cases=("rigid_rotor_a clean 1" "rigid_rotor_a clearance_worn 4" "rigid_rotor_a s
   "rigid_fourdof_c clean 1"
   "rigid_fourdof_c flux_decay_a 8" "rigid_fourdof_c misalignment_friction 17"
   "rigid_fourdof_c side_pull 16" "rigid_fourdof_c clean 202" "rigid_rotor_a misalignment_friction 217"
-  "rigid_rotor_a clean 218" "rigid_rotor_a static_unbalance 406")
+  "rigid_rotor_a clean 218" "rigid_rotor_a static_unbalance 406"
+  "rigid_rotor_a tdb_misalignment 203" "rigid_rotor_a race_inertia 215")
 for c in "${cases[@]}"; do
   read -r rig effect seed extra <<<"$c"
   run="${rig}_${effect}_$seed${extra:+_${extra//[^a-z0-9]/}}"
@@ -139,6 +149,29 @@ for case in sys.argv[4:]:
                 problems.append(f"{key}: {got.get(key)} against {true} (declared {base})")
         if fit["verdict"] != "explained":
             problems.append(f"verdict {fit['verdict']}")
+    elif (rig, effect, seed) == ("rigid_rotor_a", "race_inertia", "215"):
+        # A look-alike of the record (issue 23: right when listed as equivalent): the race's
+        # inertia among the equivalents, its value within 20 % of the true change, the speeds
+        # cut 3x by it, and the verdict `explained`.
+        key = "tdb.nde.spin.inertia_kg_m2"
+        true = float(dict(line.split("=", 1) for line in truth["ambdrop_set"])[key])
+        base = declared[rig].value(key, {})
+        alike = [e for e in fit.get("equivalent", []) if any(
+            line.startswith(key + "=") for line in e.get("set", []))]
+        if fit["verdict"] != "explained":
+            problems.append(f"verdict {fit['verdict']}")
+        if not alike:
+            problems.append(f"no equivalent sets {key}: {battery.equivalent_names(fit)}")
+        else:
+            e = alike[0]
+            got = float(dict(line.split("=", 1) for line in e["set"])[key])
+            if abs(got - true) > 0.2 * abs(true - base):
+                problems.append(f"{key}: {got} against {true} (declared {base})")
+            part = fit[fit["judged_on"]]
+            noise = part["noise_floor"]
+            above = lambda r: max(0.0, r * r - noise * noise) ** 0.5
+            if above(part["rms_before"]) < 3.0 * above(e["rms_after"]):
+                problems.append(f"{e['effect']} cuts {part['rms_before']} only to {e['rms_after']}")
     elif not row["hit"]:
         rules = [n for n in (row["note"] or "miss").split("; ") if n]
         if (rig, effect) in cut_beyond_the_record:

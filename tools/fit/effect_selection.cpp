@@ -60,6 +60,10 @@ double ChiSquareHeadroom(std::size_t degrees_of_freedom) {
 
 }  // namespace
 
+int FittedJitterDraws(const SelectionRules& rules) {
+  return std::min(256, 4 * std::max(0, rules.jitter_draws));
+}
+
 Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
                         const std::vector<Effect>& library, double noise_floor,
                         const SelectionRules& rules, const ModelFloors* floors) {
@@ -414,7 +418,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
       const RecordCost chosen_cost(chosen_params, cost.measurement(), cost.record(),
                                    cost.run_options());
       chosen_jitter = DrawJitter(chosen_cost, *speeds_cost, s.speeds.limit_after,
-                                 rules.jitter_draws, rules.threads);
+                                 FittedJitterDraws(rules), rules.threads);
     }
     const JitterDraws& j = chosen_jitter;
     if (j.first_within > 0 || j.first_match > 0) {
