@@ -176,7 +176,7 @@ void LcmEndpoint::Stop() noexcept {
 LcmEndpointCounters LcmEndpoint::counters() const noexcept {
   constexpr auto kRelaxed = std::memory_order_relaxed;
   LcmEndpointCounters c;
-  c.currents_received = currents_received_.load(kRelaxed);
+  c.currents_received = currents_received_.load(std::memory_order_acquire);
   c.triggers_received = triggers_received_.load(kRelaxed);
   c.malformed_decode = malformed_decode_.load(kRelaxed);
   c.malformed_range = malformed_range_.load(kRelaxed);
@@ -258,8 +258,10 @@ void LcmEndpoint::HandleCurrents(const void* data, std::size_t size) noexcept {
   }
   have_sequence_ = true;
   last_sequence_ = msg.sequence;
-  currents_received_.fetch_add(1, std::memory_order_relaxed);
   currents_.TryPush(currents);  // full: dropped and counted by the ring
+  // Counted once pushed, with release: whoever reads the count (acquire) can pop the sample.
+  // Counted before the push, a reader under TSan saw the count and found the ring empty.
+  currents_received_.fetch_add(1, std::memory_order_release);
 }
 
 void LcmEndpoint::HandleTrigger(const void* data, std::size_t size) noexcept {
