@@ -62,7 +62,8 @@ Fitted FitTruth(const std::vector<std::string>& effect, const char* rig = kRig,
   const Selection& s = f.fit->selection;
   std::printf("verdict %s: %s\n", s.verdict.c_str(), s.reason.c_str());
   for (const ParameterEstimate& p : s.chosen_fit.parameters) {
-    std::printf("  %s %s = %.6g +- %.2g\n", p.effect.c_str(), p.name.c_str(), p.value, p.sigma);
+    std::printf("  %s %s = %.6g +- %.2g%s\n", p.effect.c_str(), p.name.c_str(), p.value, p.sigma,
+                p.decided ? "" : " (not decided)");
   }
   if (std::getenv("FIT_DEBUG")) {
     std::printf("judged %s step %g (%s)\n", s.judged_on.c_str(), f.fit->step.step_s,
@@ -101,6 +102,8 @@ TEST_P(FitEffects, NamesTheEffectRecoversItAndCutsTheResidual) {
   const ParameterEstimate* p = ChosenParameter(*f.fit, c.effect, c.parameter);
   ASSERT_NE(p, nullptr) << c.effect << " " << c.parameter << " not fitted";
   EXPECT_NEAR(p->value, c.value, 0.2 * std::abs(c.value)) << c.parameter;
+  // A value the record brings back within 20 % is one it decides, and the report says so.
+  EXPECT_TRUE(p->decided) << c.parameter << " = " << p->value << " +- " << p->sigma;
   // The record's noise stays whatever the model: the cut is of the error above it.
   const double before = AboveNoise(s.rms_before, s.noise_floor);
   const double after = AboveNoise(s.rms_after, s.noise_floor);

@@ -203,6 +203,14 @@ std::vector<double> InfluenceStart(const ConfigVariants& declared, const RecordC
 
 }  // namespace
 
+bool ParameterDecided(const EffectParameter& p, double value, double sigma, bool at_bound) {
+  if (at_bound) return true;
+  if (!std::isfinite(sigma)) return p.quantum > 0.0;
+  if (p.log_scale || p.magnitude) return sigma < 0.5 * std::abs(value);
+  const double range = p.periodic ? 2.0 * std::numbers::pi : p.upper - p.lower;
+  return !(range > 0.0) || sigma < 0.25 * range;
+}
+
 std::vector<std::string> EffectOverrides(const std::vector<const Effect*>& effects,
                                          const std::vector<std::vector<double>>& values) {
   std::vector<std::string> out;
@@ -414,6 +422,8 @@ EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
     est.value = ToValue(*flat[i].parameter, best_z(static_cast<Eigen::Index>(i)));
     const double var = cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
     est.sigma = at_bound[i] || !(var >= 0.0) ? kNaN : std::sqrt(var);
+    est.at_bound = at_bound[i];
+    est.decided = ParameterDecided(*flat[i].parameter, est.value, est.sigma, est.at_bound);
     fit.parameters.push_back(est);
   }
   return fit;

@@ -19,7 +19,21 @@ struct ParameterEstimate {
   /// residual variance; NaN at a bound or where the record does not determine it. Residual
   /// samples are correlated in time, so it is a lower bound.
   double sigma = 0.0;
+  /// The search stopped on one of the parameter's bounds.
+  bool at_bound = false;
+  /// False where the record leaves the value open (ParameterDecided): the model still runs
+  /// with it, but it is no measurement of the machine.
+  bool decided = true;
 };
+
+/// Whether a fitted value is one the record decides. Its sigma is a lower bound, so a value is
+/// taken as open when even that spans a factor of 1.5 of a size known only to its decade or of
+/// a size from 0 (sigma >= half the value), or a quarter of the range of any other number; a
+/// sigma the record gives none of (the column flat, or the normal matrix singular with its
+/// neighbours) leaves it open too, except at a bound (the record pushed it there) or on a
+/// quantised number (a delay between samples: flat between them by construction). The 4-DOF
+/// truth rig's Dahl ribbon records: slipping stiffness 3.3e3 +- 1.8e6, 5.1e4 +- 8.0e4 N/m.
+bool ParameterDecided(const EffectParameter& p, double value, double sigma, bool at_bound);
 
 struct EffectFit {
   std::vector<std::string> effects;

@@ -68,6 +68,7 @@ void Parameters(JsonWriter& json, const EffectFit& fit, const std::string& effec
     json.Key(p.name).BeginObject(true);
     json.Key("value").Number(p.value);
     json.Key("sigma").Number(p.sigma);
+    json.Key("decided").Bool(p.decided);
     json.EndObject();
   }
   json.EndObject();
@@ -300,6 +301,7 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
         json.Key(c.fit.effects.size() > 1 ? p.effect + "." + p.name : p.name).BeginObject(true);
         json.Key("value").Number(p.value);
         json.Key("sigma").Number(p.sigma);
+        json.Key("decided").Bool(p.decided);
         json.EndObject();
       }
       json.EndObject();
@@ -407,7 +409,10 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
       md += fmt::format("- **{}**: {}\n", o.chosen[e]->name, o.chosen[e]->description);
       for (const ParameterEstimate& p : s.chosen_fit.parameters) {
         if (p.effect == o.chosen[e]->name) {
-          md += fmt::format("  - {} = {:.6g} ± {:.2g}\n", p.name, p.value, p.sigma);
+          md += fmt::format("  - {} = {:.6g} ± {:.2g}{}\n", p.name, p.value, p.sigma,
+                            p.decided ? ""
+                                      : " (not decided: the record leaves it open; the model "
+                                        "runs with it, but it measures nothing)");
         }
       }
       // Exactly what was applied: the --set lines of the declared config.
