@@ -45,8 +45,16 @@ namespace ambdrop::rt_loop_test {
 namespace {
 
 // ASan and TSan intercept mlockall and make it a no-op that returns 0 (locking their shadow
-// memory would be absurd), so /proc shows nothing locked in those builds.
+// memory would be absurd), so /proc shows nothing locked in those builds. GCC says so by
+// __SANITIZE_*__, clang (14) only by __has_feature.
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define AMBDROP_MLOCKALL_INTERCEPTED
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define AMBDROP_MLOCKALL_INTERCEPTED
+#endif
+#endif
+#ifdef AMBDROP_MLOCKALL_INTERCEPTED
 constexpr bool kMlockallIsReal = false;
 #else
 constexpr bool kMlockallIsReal = true;
