@@ -65,7 +65,10 @@ from pathlib import Path
 #   - otherwise, all of:
 #     1. name: the first chosen effect's `set` lines touch a key group of the truth, and every
 #        key group of the truth is touched by a chosen effect's `set` lines or by an effect listed
-#        in `equivalent` (a look-alike or a pair counts when both are listed);
+#        in `equivalent` (a look-alike or a pair counts when both are listed); where the first
+#        chosen touches none, a look-alike listed beside it (fit.json schema 2, with its set
+#        lines) that touches one names the truth (issue 23: "a look-alike pair counts as right
+#        when both are listed as equivalent"), and its values are the ones compared;
 #     2. value: every numeric key that the truth and a chosen effect both set is within 20 % of
 #        the true change from the declared value (VALUE_TOLERANCE); angles within 0.35 rad;
 #        zero-valued changes within ABSOLUTE_TOLERANCE;
@@ -462,14 +465,28 @@ def score(record, truth, fit, declared):
     covered = set(first)
     for keys in chosen_keys[1:]:
         covered |= touched_groups(keys, truth_groups)
+    by_look_alike = None
+    value_sources = list(fit["chosen"])  # the effects whose values are compared
     for e in fit.get("equivalent", []):
         if isinstance(e, dict):  # fit.json schema 2: each look-alike with its set lines
-            keys = [k for k, _ in normalise_keys([split_line(x) for x in e["set"]])]
+            pairs = normalise_keys([split_line(x) for x in e["set"]])
+            keys = [k for k, _ in pairs]
+            # Issue 23: "a look-alike pair counts as right when both are listed as equivalent":
+            # where the first chosen effect touches no truth key, a look-alike listed beside it
+            # that does names the truth, and its values are the ones compared.
+            if not first and by_look_alike is None and touched_groups(keys, truth_groups):
+                by_look_alike = e["effect"]
+                first = touched_groups(keys, truth_groups)
+                for k, v in pairs:
+                    chosen_values.setdefault(k, v)
+                value_sources.append(e)
         else:
             keys = effect_name_keys(e, declared.items(e.partition(":")[0]))
         covered |= touched_groups(keys, truth_groups)
     named = bool(first) and covered == set(truth_groups)
     notes = []
+    if by_look_alike is not None:
+        notes.append(f"named by the look-alike {by_look_alike} listed beside the first chosen")
     if not first:
         notes.append("first chosen touches no truth key")
     elif not named:
@@ -478,7 +495,7 @@ def score(record, truth, fit, declared):
     values_ok = True
     off_only_open = True  # every value off is one the fit itself calls open
     texts = []
-    open_leaves = {name for c in fit["chosen"] for name, p in c.get("parameters", {}).items()
+    open_leaves = {name for c in value_sources for name, p in c.get("parameters", {}).items()
                    if isinstance(p, dict) and p.get("decided") is False}
     for k, v in truth_pairs:
         if leaf(k) in NOT_COMPARED_LEAVES or k not in chosen_values:
