@@ -88,6 +88,7 @@ TEST(FitEffectOverrides, EveryLineIsReadBackExactlyOnEveryRig) {
 // where the record's was 4.7), the hold candidate switches to the hold.
 TEST(FitEffectOverrides, EveryFluxDecayCandidateRunsTheLawItNames) {
   int candidates = 0;
+  int parts = 0;  // a declared hold's numbers one at a time (the 4-DOF truth rig declares one)
   for (const std::string& rig : RigsAndTruthRigs()) {
     SCOPED_TRACE(rig);
     const ConfigVariants variants = testing::LoadTestVariants(rig);
@@ -95,10 +96,15 @@ TEST(FitEffectOverrides, EveryFluxDecayCandidateRunsTheLawItNames) {
       if (e.family != "amb_flux_decay") continue;
       SCOPED_TRACE(e.name);
       ++candidates;
-      const bool hold = e.name == "amb_flux_decay_hold";
+      // amb_flux_decay_hold (both numbers), _hold_time and _hold_tau (one of a declared hold's
+      // two, the other as declared).
+      const bool hold = e.name.rfind("amb_flux_decay_hold", 0) == 0;
+      parts += e.name == "amb_flux_decay_hold_time" || e.name == "amb_flux_decay_hold_tau";
       const ModelParams p = variants.With(e.overrides(e.probe)).params;
+      const ModelParams& d = variants.declared().params;
       int touched = 0;
-      for (const AmbParams& a : p.ambs) {
+      for (std::size_t i = 0; i < p.ambs.size(); ++i) {
+        const AmbParams& a = p.ambs[i];
         const bool named =
             e.name.find(':') == std::string::npos || e.name.substr(e.name.find(':') + 1) == a.name;
         if (!named) continue;
@@ -107,11 +113,20 @@ TEST(FitEffectOverrides, EveryFluxDecayCandidateRunsTheLawItNames) {
         EXPECT_EQ(a.flux_decay.current_law, hold ? PowerLossCurrentLaw::kHoldThenExponential
                                                  : PowerLossCurrentLaw::kExponential)
             << a.name;
+        if (e.name == "amb_flux_decay_hold_time") {
+          EXPECT_EQ(a.flux_decay.time_constant_s, d.ambs[i].flux_decay.time_constant_s);
+          EXPECT_NE(a.flux_decay.hold_time_s, d.ambs[i].flux_decay.hold_time_s);
+        }
+        if (e.name == "amb_flux_decay_hold_tau") {
+          EXPECT_EQ(a.flux_decay.hold_time_s, d.ambs[i].flux_decay.hold_time_s);
+          EXPECT_NE(a.flux_decay.time_constant_s, d.ambs[i].flux_decay.time_constant_s);
+        }
       }
       EXPECT_GT(touched, 0);
     }
   }
   EXPECT_GT(candidates, 12);
+  EXPECT_GE(parts, 2);
 }
 
 // At its probe, an effect moves some number the model reads; the declared config does not

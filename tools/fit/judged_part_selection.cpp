@@ -283,6 +283,7 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
   // to 0.00424. A TDB's larger clearance fits an offset TDB's drop start as well (0.000353
   // against 0.000348) but not the rest (0.00413, limit 0.00194): the offset stays.
   std::string simpler;
+  std::string displaced;  // the richer explanation the simpler one was named before
   if (order.size() > 1 && !at_floor) {
     const CandidateScore& top = singles[order.front()];
     std::size_t pick = 0;
@@ -301,6 +302,7 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
       simpler =
           fmt::format("; the simpler of the look-alikes is named first ({} has {} parameters)",
                       top.name, Parameters(top.fit));
+      displaced = top.name;
       std::rotate(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(pick),
                   order.begin() + static_cast<std::ptrdiff_t>(pick) + 1);
     }
@@ -435,7 +437,11 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
       if (c.name == s.chosen.front()) family = c.family;
     }
     for (const CandidateScore& c : singles) {
-      if (!c.tried || !std::isfinite(c.fit.sse) || c.family == family || c.name == set_aside ||
+      // Another family's look-alikes; of the chosen effect's own family only the richer one it
+      // was named before (both numbers of a declared power loss off where one alone fits as
+      // well): per-item variants of one family are not alternatives to each other.
+      if (!c.tried || !std::isfinite(c.fit.sse) || (c.family == family && c.name != displaced) ||
+          c.name == set_aside ||
           std::find(breaking.begin(), breaking.end(), c.name) != breaking.end()) {
         continue;
       }
