@@ -53,7 +53,11 @@
 #   - the rigid rig's heavier NDE race of seed 215: a Palmgren load torque fits its speeds best
 #     and a drag torque nearly as well, and the race's inertia (the truth, at its range's end)
 #     agrees with the record too, within the agreement limit: listed as equivalent with its
-#     value, so the record's look-alikes are named and the truth among them.
+#     value, so the record's look-alikes are named and the truth among them;
+#   - the 4-DOF rig's power loss of seed 409, its declared 1 ms hold 1.71 ms long and its time
+#     constant as declared: the hold alone (amb_flux_decay_hold_time) named first, within 20 %
+#     of its change (the hold and time constant fitted together traded one for the other and
+#     left the hold 23 % of its change off).
 # Every record is fitted before the script fails, so one run shows every outcome.
 # Usage: truth_fit_subset.sh AMBDROP_BINARY SOURCE_DIR [AMBDROP_TRUTH_BINARY]
 #   (the truth binary defaults to tools/truth/ambdrop_truth beside the ambdrop binary's build
@@ -87,7 +91,8 @@ cases=("rigid_rotor_a clean 1" "rigid_rotor_a clearance_worn 4" "rigid_rotor_a s
   "rigid_fourdof_c flux_decay_a 8" "rigid_fourdof_c misalignment_friction 17"
   "rigid_fourdof_c side_pull 16" "rigid_fourdof_c clean 202" "rigid_rotor_a misalignment_friction 217"
   "rigid_rotor_a clean 218" "rigid_rotor_a static_unbalance 406"
-  "rigid_rotor_a tdb_misalignment 203" "rigid_rotor_a race_inertia 215")
+  "rigid_rotor_a tdb_misalignment 203" "rigid_rotor_a race_inertia 215"
+  "rigid_fourdof_c flux_decay_b 409")
 for c in "${cases[@]}"; do
   read -r rig effect seed extra <<<"$c"
   run="${rig}_${effect}_$seed${extra:+_${extra//[^a-z0-9]/}}"
