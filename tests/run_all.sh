@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Every test of ambdrop, as CI runs them: the README's test command ends with this script, and
-# .ci/run runs that command. The jobs run one after another (CI has 2 cores and 30 minutes for
-# all of them); each prints "ok" or "FAILED" with its time, and the exit code is non-zero when
-# any job failed, so a CI job can be built on it. Run one job alone with its name as argument:
+# .ci/run runs that command. The jobs (format, release, asan with the fuzz targets, tsan) run
+# one after another (CI has 2 cores and 30 minutes for all of them); each prints "ok" or
+# "FAILED" with its time, and the exit code is non-zero when any job failed, so a CI job can be
+# built on it. Run one job alone with its name as argument:
 #   tests/run_all.sh [format|release|asan|tsan|fuzz]...
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -42,22 +43,24 @@ release() {
 # ASan+UBSan at -O1 with asserts on, line tables only (-g1: file and line in the reports, a
 # third less compile time than -g) (tests/CMakeLists.txt lists what it runs): the command line
 # and the listed test programs are built, nothing else (the truth generator and the stand-in
-# controller are not run under ASan). Built by clang 14 (the fuzz job's compiler): the same
-# build took 318 s where GCC 12 took 438 s (rt_core/simulator.cpp alone 38 s against 65 s), and
-# the 417 tests pass under both. No -Werror: GCC 12 warns falsely under the sanitizers, and the
-# Release job holds the tree to GCC's warnings.
+# controller are not run under ASan). Built by clang 14: the same build took 318 s where GCC 12
+# took 438 s (rt_core/simulator.cpp alone 38 s against 65 s), and the 417 tests pass under both.
+# No -Werror: GCC 12 warns falsely under the sanitizers, and the Release job holds the tree to
+# GCC's warnings. The same tree builds the libFuzzer targets of every decoder and runs them (the
+# corpus and past crashes replayed, then each target fuzzed for AMBDROP_FUZZ_SECONDS, 10 s, two
+# at a time; tests/fuzz/README.md runs them longer): a tree of their own compiled rt_core, io
+# and controller_if a third time (~190 s of CI).
 asan() {
   cmake -S . -B build-asan -G Ninja -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=Debug \
     -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
-    -DAMBDROP_SANITIZE=ON -DAMBDROP_BUILD_BENCHMARKS=OFF &&
-    cmake --build build-asan --target ambdrop ambdrop_test_programs &&
+    -DAMBDROP_SANITIZE=ON -DAMBDROP_FUZZ=ON -DAMBDROP_BUILD_BENCHMARKS=OFF &&
+    cmake --build build-asan --target ambdrop ambdrop_test_programs ambdrop_fuzz_targets &&
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
       ctest --test-dir build-asan --output-on-failure -j "$cores"
 }
 
-# libFuzzer (clang) on every decoder: the corpus and past crashes replayed, then each target
-# fuzzed for AMBDROP_FUZZ_SECONDS (10 s each, two at a time; tests/fuzz/README.md runs them
-# longer).
+# The fuzz targets in a tree of their own, every library instrumented for coverage (not in the
+# default list: the asan job runs them; this one is for fuzzing longer, tests/fuzz/README.md).
 fuzz() {
   CXX=clang++-14 cmake -S . -B build-fuzz -G Ninja -DAMBDROP_FUZZ=ON -DCMAKE_BUILD_TYPE=Debug \
     -DCMAKE_CXX_FLAGS_DEBUG="-O1" -DAMBDROP_BUILD_BENCHMARKS=OFF &&
@@ -76,7 +79,7 @@ tsan() {
 }
 
 selected=("$@")
-[[ ${#selected[@]} -gt 0 ]] || selected=(format release asan tsan fuzz)
+[[ ${#selected[@]} -gt 0 ]] || selected=(format release asan tsan)
 for job in "${selected[@]}"; do
   case $job in
     format) run_job format format_check ;;
