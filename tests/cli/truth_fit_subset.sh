@@ -57,7 +57,10 @@
 #   - the 4-DOF rig's power loss of seed 409, its declared 1 ms hold 1.71 ms long and its time
 #     constant as declared: the hold alone (amb_flux_decay_hold_time) named first, within 20 %
 #     of its change (the hold and time constant fitted together traded one for the other and
-#     left the hold 23 % of its change off).
+#     left the hold 23 % of its change off);
+#   - the rigid rig's chain lag of seed 12 (a 0.33 ms low-pass and a 0.16 ms delay on every
+#     sensor, the controller reading through them): the lag shared by every sensor
+#     (`sensor_lag`, issue 15 item 5) named first, its delay and cut-off within 20 %.
 # Every record is fitted before the script fails, so one run shows every outcome.
 # Usage: truth_fit_subset.sh AMBDROP_BINARY SOURCE_DIR [AMBDROP_TRUTH_BINARY]
 #   (the truth binary defaults to tools/truth/ambdrop_truth beside the ambdrop binary's build
@@ -92,7 +95,7 @@ cases=("rigid_rotor_a clean 1" "rigid_rotor_a clearance_worn 4" "rigid_rotor_a s
   "rigid_fourdof_c side_pull 16" "rigid_fourdof_c clean 202" "rigid_rotor_a misalignment_friction 217"
   "rigid_rotor_a clean 218" "rigid_rotor_a static_unbalance 406"
   "rigid_rotor_a tdb_misalignment 203" "rigid_rotor_a race_inertia 215"
-  "rigid_fourdof_c flux_decay_b 409")
+  "rigid_fourdof_c flux_decay_b 409" "rigid_rotor_a chain_lag 12")
 for c in "${cases[@]}"; do
   read -r rig effect seed extra <<<"$c"
   run="${rig}_${effect}_$seed${extra:+_${extra//[^a-z0-9]/}}"

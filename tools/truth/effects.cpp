@@ -221,8 +221,13 @@ Truth ApplyEffect(const std::string& kind, std::uint64_t seed, Rig* rig) {
     t.mapping = "exact";
   } else if (kind == "chain_lag") {
     AcquisitionRig& q = rig->acquisition;
-    q.lag_time_constant_s = d.Between(40e-6, 120e-6);
-    q.lag_delay_s = d.Between(30e-6, 150e-6);
+    // Drawn about where the records can show it: a lag shows only through the fast motion of
+    // the impacts (a free fall 5 ms long moves 0.05 um in 0.1 ms). Drawn from 40-120 us and
+    // 30-150 us, the declared model without it agreed within the agreement limit with every
+    // such record of six batteries (docs/verification.md, sessions 30-32): no fit could have
+    // named it. At 0.2-0.7 ms in all, some records show it and some do not.
+    q.lag_time_constant_s = d.Between(100e-6, 400e-6);
+    q.lag_delay_s = d.Between(100e-6, 300e-6);
     t.description = fmt::format(
         "the whole acquisition chain lags: a first-order low-pass of {:.3g} s then a delay of "
         "{:.3g} s on every sensor axis (the controller reads through it too)",
