@@ -2,7 +2,11 @@
 # Measured records that hold nothing to fit: one in which nothing moves (every channel would be
 # left out, and any model "already within 0 of the record"), and one with a single absurd cell
 # (it would swamp its channel's noise and drop the channel without a word). Each is refused
-# (exit 2) saying why, naming the channels left out or the cell.
+# (exit 2) saying why, naming the channels left out or the cell. And a declared model that
+# cannot run the record (a contact so stiff that the step cannot follow it stops the drop at
+# its first impact): refused as a failed run (exit 3) with where and why it stopped, and no
+# verdict written; it once came out "no_effect_needed", its agreement limit widened past its
+# residual by sensitivities measured from runs as broken.
 # Usage: hostile_fit.sh AMBDROP_BINARY SOURCE_DIR
 source "$(dirname "$0")/../support/cli_prelude.sh" "$@"
 rig="$source_dir/configs/jarroux2019_industrial_pid.toml"
@@ -46,5 +50,17 @@ timeout 60 "$tool" fit declared.toml "${timing[@]}" --measured absurd.csv --out 
 [[ $rc -eq 2 ]] || fail "a record with a 1e300 cell: exit $rc, not 2: $(cat absurd.err)"
 grep -q "absurd.csv: column '.*' (displacement) at t = .* s (data row 2000): expected |value| <= 1 m, found 1e+300" \
   absurd.err || fail "unclear error for a 1e300 cell: $(cat absurd.err)"
+
+# A declared model that stops at the drop's first impact.
+rc=0
+timeout 120 "$tool" fit declared.toml "${timing[@]}" --measured drop.csv --out stops -q \
+  --set tdb.de.contact_law.bearing_stiffness_N_per_m=1e13 \
+  --set tdb.nde.contact_law.bearing_stiffness_N_per_m=1e13 >/dev/null 2>stops.err || rc=$?
+[[ $rc -eq 3 ]] || fail "a declared model that stops early: exit $rc, not 3: $(cat stops.err)"
+grep -q "drop.csv: the declared model does not run to the record's end" stops.err ||
+  fail "unclear error for a declared model that stops early: $(cat stops.err)"
+grep -q "state after the failing step" stops.err ||
+  fail "no state dump for a declared model that stops early: $(cat stops.err)"
+[[ ! -e stops/fit.json ]] || fail "a verdict was written for a model that cannot run the record"
 
 echo "hostile fit: ok"

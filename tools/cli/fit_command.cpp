@@ -290,6 +290,9 @@ int FitOneRecord(const FitOptions& options, const std::string& measured_path,
   std::unique_ptr<FitResult> fit;
   try {
     fit = FitRecord(*variants, m, record, fit_options);
+  } catch (const DeclaredModelStopped& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kExitRunFailed;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kExitConfig;
@@ -299,10 +302,6 @@ int FitOneRecord(const FitOptions& options, const std::string& measured_path,
                channel);
   }
   const Selection& selection = fit->selection;
-  if (fit->before.status != StepStatus::kOk && !options.quiet) {
-    fmt::print(stderr, "warning: the declared model stopped early on the record: {}\n",
-               fit->before.failure);
-  }
   FitOutcome outcome;
   outcome.config_path = options.config_path;
   outcome.measured_path = measured_path;

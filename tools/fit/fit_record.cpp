@@ -86,6 +86,17 @@ std::unique_ptr<FitResult> FitRecord(const ConfigVariants& config, const Measure
                               : fmt::format(" ({})", fmt::join(fit->left_out, ", "))));
   }
   fit->before = cost.Simulate(declared);
+  // Its residual would score every sample it did not reach a full range off, and its step and
+  // start sensitivities, from runs as broken, once widened the agreement limit past that:
+  // a declared model that diverged 12 ms after the trigger was "already within 0.709 of the
+  // record, inside the agreement limit 1.42", no effect needed.
+  if (fit->before.status != StepStatus::kOk) {
+    throw DeclaredModelStopped(fmt::format(
+        "{}: the declared model does not run to the record's end at the fit's step ({:.3g} s): "
+        "{}\nA model that cannot run the record cannot be held against it: make it run "
+        "(`ambdrop sim` with the same config), then fit again",
+        record.source, fit->step.step_s, fit->before.failure));
+  }
   fit->library = EffectLibrary(config);
   fit->selection = SelectEffects(config, cost, fit->library, cost.NoiseFloor(), options.rules,
                                  options.choose_step ? &fit->step.floors : nullptr);

@@ -2,6 +2,7 @@
 // `ambdrop fit` without its files: the declared model held against a record, every effect of
 // the library tried, the chosen ones fitted, and the residual before and after.
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -39,8 +40,16 @@ struct FitResult {
   MeasurementParams measurement;
 };
 
+/// The declared model's own run on the record stops early (it diverged): what() says where,
+/// why, and the state dump. Nothing can be held against a model that cannot run the record.
+class DeclaredModelStopped : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// Throws (std::runtime_error and its kin) when the record cannot be used with the model, or
-/// none of its channels moves beyond its noise (there would be nothing to compare).
+/// none of its channels moves beyond its noise (there would be nothing to compare);
+/// DeclaredModelStopped when the declared model's run on it stops early.
 std::unique_ptr<FitResult> FitRecord(const ConfigVariants& declared,
                                      const MeasurementParams& measurement,
                                      const MeasuredRecord& record, const FitRecordOptions& options);
