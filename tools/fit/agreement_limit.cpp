@@ -1,5 +1,7 @@
 #include "tools/fit/effect_selection.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -89,6 +91,14 @@ Selection::Part JudgePart(const ConfigVariants& declared, const RecordCost& cost
     half.step_s = 0.5 * (half.step_s > 0 ? half.step_s : cost.declared().simulation.step_s);
     const SimulatedRecord fine =
         SimulateOnRecord(cost.declared(), cost.measurement(), cost.record(), half);
+    // A run that stops scores its unreached samples a full range off: as a sensitivity, that
+    // would widen the limit past any residual (FitRecord refuses the same at the fit's step).
+    if (fine.status != StepStatus::kOk) {
+      throw DeclaredModelStopped(fmt::format(
+          "{}: the declared model does not run to the record's end at half the fit's step "
+          "({:.3g} s), so its sensitivity to the step cannot be measured: {}",
+          cost.record().source, half.step_s, fine.failure));
+    }
     part.step_sensitivity = OverallRms(cost, (cost.Residual(fine) - residual_before).squaredNorm());
   }
   part.start_sensitivity = std::isfinite(known.start_sensitivity)

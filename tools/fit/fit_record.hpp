@@ -2,7 +2,6 @@
 // `ambdrop fit` without its files: the declared model held against a record, every effect of
 // the library tried, the chosen ones fitted, and the residual before and after.
 #include <memory>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -38,13 +37,6 @@ struct FitResult {
   /// record (trigger_state = "record_start") where the model's own state departed there and
   /// the lead window's estimate agreed (FitRecord).
   MeasurementParams measurement;
-};
-
-/// The declared model's own run on the record stops early (it diverged): what() says where,
-/// why, and the state dump. Nothing can be held against a model that cannot run the record.
-class DeclaredModelStopped : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
 };
 
 /// Throws (std::runtime_error and its kin) when the record cannot be used with the model, or

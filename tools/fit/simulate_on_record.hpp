@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -87,6 +88,13 @@ double OpenLoopStartHalfWindow(const MeasuredRecord& record);
 /// The standard errors of that fit's value and slope at `t_start` per unit of the samples'
 /// noise (m and m/s per m of noise): how closely a record pins the open-loop start.
 std::pair<double, double> OpenLoopStartUncertainty(const MeasuredRecord& record, double t_start);
+
+/// The declared model's own run on the record stops early (it diverged): what() says where,
+/// why, and the state dump. Nothing can be held against a model that cannot run the record.
+class DeclaredModelStopped : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 /// What the model says each measured channel should read.
 struct SimulatedRecord {
