@@ -317,6 +317,32 @@ Effect FluxDecay(const ModelParams& declared) {
                      tau);
 }
 
+// The hold-then-fall law the AMBs declare: the first one whose numbers the candidates' ranges
+// hold (nullptr if none), whether every AMB that declares that law declares the same numbers
+// (one supply), and those AMBs.
+struct DeclaredHold {
+  const FluxDecayParams* law = nullptr;
+  bool alike = true;
+  std::vector<std::string> ambs;
+};
+DeclaredHold DeclaredHoldLaw(const ModelParams& declared) {
+  DeclaredHold h;
+  const FluxDecayParams* first = nullptr;
+  for (const AmbParams& a : declared.ambs) {
+    const FluxDecayParams& f = a.flux_decay;
+    if (!f.enabled || f.current_law != PowerLossCurrentLaw::kHoldThenExponential) continue;
+    if (first == nullptr) first = &f;
+    h.alike = h.alike && f.hold_time_s == first->hold_time_s &&
+              f.time_constant_s == first->time_constant_s;
+    if (h.law == nullptr && f.hold_time_s <= 1e-2 && f.time_constant_s >= 1e-4 &&
+        f.time_constant_s <= 0.1) {
+      h.law = &f;
+    }
+    h.ambs.push_back(a.name);
+  }
+  return h;
+}
+
 // The other current law a power loss shows (issue 24): the amplifiers hold the currents, and so
 // the force law, for a while (their supply's capacitors), then the coils' L/R takes them. On
 // every AMB together (one supply). Two parameters where the exponential has one, so it must pay
@@ -334,14 +360,9 @@ Effect FluxDecayHold(const ModelParams& declared) {
   std::vector<double> tau_starts = {2e-3, 8e-3};
   // A declared hold is refitted from where it was declared too (issue 23: a declared law's
   // numbers are suspects, starting from their declared values).
-  for (const AmbParams& a : declared.ambs) {
-    const FluxDecayParams& f = a.flux_decay;
-    if (f.enabled && f.current_law == PowerLossCurrentLaw::kHoldThenExponential &&
-        f.hold_time_s <= 1e-2 && f.time_constant_s >= 1e-4 && f.time_constant_s <= 0.1) {
-      hold_starts = Distinct({f.hold_time_s, 5e-4, 2e-3});
-      tau_starts = Distinct({f.time_constant_s, 2e-3, 8e-3});
-      break;
-    }
+  if (const FluxDecayParams* f = DeclaredHoldLaw(declared).law) {
+    hold_starts = Distinct({f->hold_time_s, 5e-4, 2e-3});
+    tau_starts = Distinct({f->time_constant_s, 2e-3, 8e-3});
   }
   e.parameters = {{"hold_time_s", 0.0, 1e-2, hold_starts},
                   {"time_constant_s", 1e-4, 0.1, tau_starts}};
@@ -368,22 +389,11 @@ Effect FluxDecayHold(const ModelParams& declared) {
 // time constant 8 % and left the hold 23 % of its change off. One number where two would fit no
 // better is the simpler look-alike, named first (judged_part_selection.cpp).
 std::optional<Effect> FluxDecayHoldPart(const ModelParams& declared, bool hold) {
-  std::vector<std::string> ambs;
-  const FluxDecayParams* law = nullptr;
-  for (const AmbParams& a : declared.ambs) {
-    const FluxDecayParams& f = a.flux_decay;
-    if (!f.enabled || f.current_law != PowerLossCurrentLaw::kHoldThenExponential) continue;
-    if (law == nullptr) law = &f;
-    // One supply: a hold or time constant moved together where every AMB declares the same.
-    if (f.hold_time_s != law->hold_time_s || f.time_constant_s != law->time_constant_s) {
-      return std::nullopt;
-    }
-    ambs.push_back(a.name);
-  }
-  if (law == nullptr || !(law->hold_time_s <= 1e-2) || !(law->time_constant_s >= 1e-4) ||
-      !(law->time_constant_s <= 0.1)) {
-    return std::nullopt;
-  }
+  // One supply: a hold or time constant moved together where every AMB declares the same.
+  const DeclaredHold declared_hold = DeclaredHoldLaw(declared);
+  if (declared_hold.law == nullptr || !declared_hold.alike) return std::nullopt;
+  const FluxDecayParams* law = declared_hold.law;
+  const std::vector<std::string>& ambs = declared_hold.ambs;
   Effect e;
   e.family = "amb_flux_decay";
   e.revealed_by = {Q::kDisplacement, Q::kCurrent, Q::kTdbNormalForce, Q::kTdbSupportForce};

@@ -1,5 +1,7 @@
 #include "tools/fit/start_sensitivity.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -108,15 +110,27 @@ double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
           : 0;
   const std::size_t fixed = variants.size() + starts.size() + axes.size();
   std::vector<double> moved(fixed + static_cast<std::size_t>(jitter_draws), 0.0);
+  // A probe that stops scores its unreached samples a full range off: as the largest move, that
+  // would widen the limit past any residual. A model a hair from the declared one that does not
+  // run the record is as unfit to hold against it as the declared one that does not. (A drawn
+  // jitter's run that stops is one large move among the draws, whose median is taken.)
+  const auto residual = [&](const SimulatedRecord& sim) {
+    if (sim.status != StepStatus::kOk) {
+      throw DeclaredModelStopped(fmt::format(
+          "{}: a run of the declared model a hair from it (a probe of its sensitivity to its "
+          "start) does not run to the record's end: {}",
+          r.source, sim.failure));
+    }
+    return cost.Residual(sim);
+  };
   ParallelFor(moved.size(), threads, [&](std::size_t i) {
     Eigen::VectorXd r_i;
     if (i < variants.size()) {
-      r_i = cost.Residual(declared.With(variants[i]).params);
+      r_i = residual(cost.Simulate(declared.With(variants[i]).params));
     } else if (i < variants.size() + starts.size()) {
-      r_i = cost.Residual(SimulateOnRecord(params, m, r, starts[i - variants.size()]));
+      r_i = residual(SimulateOnRecord(params, m, r, starts[i - variants.size()]));
     } else if (i < fixed) {
-      r_i =
-          cost.Residual(SimulateOnRecord(params, m, r, axes[i - variants.size() - starts.size()]));
+      r_i = residual(SimulateOnRecord(params, m, r, axes[i - variants.size() - starts.size()]));
     } else {
       RecordRunOptions o = cost.run_options();
       o.jitter_sigma_m = 3.0 * amplitude;  // the displacement channels' median noise

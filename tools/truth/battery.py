@@ -474,9 +474,10 @@ def score(record, truth, fit, declared):
             # Issue 23: "a look-alike pair counts as right when both are listed as equivalent":
             # where the first chosen effect touches no truth key, a look-alike listed beside it
             # that does names the truth, and its values are the ones compared.
-            if not first and by_look_alike is None and touched_groups(keys, truth_groups):
+            touched = touched_groups(keys, truth_groups)
+            if not first and by_look_alike is None and touched:
                 by_look_alike = e["effect"]
-                first = touched_groups(keys, truth_groups)
+                first = touched
                 for k, v in pairs:
                     chosen_values.setdefault(k, v)
                 value_sources.append(e)
