@@ -37,8 +37,8 @@ TEST(FitDeclaredModelStops, AModelThatStopsAtItsFirstImpactIsRefusedWithWhereAnd
     EXPECT_NE(what.find("state after the failing step"), std::string::npos) << what;
   }
   // The same declared model without the stiff contacts runs and is judged.
-  const auto fit = FitRecord(testing::LoadTestVariants(kRig, timing), made.measurement,
-                             made.record, options);
+  const auto fit =
+      FitRecord(testing::LoadTestVariants(kRig, timing), made.measurement, made.record, options);
   EXPECT_EQ(fit->selection.verdict, "no_effect_needed") << fit->selection.reason;
 }
 
