@@ -84,5 +84,43 @@ TEST(ControllerForms, DelayShiftsTheCommandsByExactlyItsSamples) {
   }
 }
 
+// The amplifier is an analog loop: advanced at the physics step, the coil current between two
+// controller samples is the first-order response to the held command, i(t) = c + (i0 - c)
+// exp(-w t) (Franklin, Powell & Workman, 3rd ed., Sec. 4.3.3), at every step's end, and Update
+// alone leaves it where it was.
+TEST(ControllerForms, TheAmplifierFollowsItsCommandBetweenTheControllersSamples) {
+  std::vector<std::string> overrides = kPdNotch;
+  const Model plain = RigWith(overrides);
+  overrides.push_back("controller.amplifier.enabled=true");
+  overrides.push_back("controller.amplifier.bandwidth_Hz=1500");
+  const Model amplified = RigWith(overrides);
+  const double period = 1.0 / plain.params.controller.rate_Hz;
+  constexpr int kSteps = 10;
+  const double step = period / kSteps;
+  ReferenceController command(plain, period);
+  ReferenceController coil(amplified, period, step);
+  ASSERT_TRUE(coil.advances_amplifier());
+  ControlInput commanded, current;
+  coil.Initial(&current);
+  const double w = 2.0 * 3.14159265358979323846 * 1500.0;
+  double coil_A = current.amb[0].current_A[1];  // the loop's state: the current at a step's end
+  for (int k = 0; k < 5; ++k) {
+    SensorReadings r{};
+    r.reading_m[0][1] = 3e-6 * std::sin(0.7 * k);
+    command.Update(r, &commanded);
+    const double before = current.amb[0].current_A[1];
+    coil.Update(r, &current);
+    EXPECT_EQ(current.amb[0].current_A[1], before) << "sample " << k;
+    const double c = commanded.amb[0].current_A[1];
+    for (int j = 1; j <= kSteps; ++j) {
+      coil.Advance(&current);
+      const double expected = c + (coil_A - c) * std::exp(-w * step);
+      coil_A = expected;
+      EXPECT_NEAR(current.amb[0].current_A[1], expected, 1e-12 + 1e-12 * std::abs(c))
+          << "sample " << k << " step " << j;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ambdrop::controller_forms_rig_test

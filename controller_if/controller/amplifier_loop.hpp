@@ -1,12 +1,11 @@
 #pragma once
 // The amplifier's current loop between the controller's command and the coil current, sampled
-// at the controller period T: the command is held over the period (it is what the controller
-// wrote) and the loop's response to it is exact at the period's end (zero-order hold), so the
-// discretisation adds no error of its own; the physics then holds that current over the period.
-// At the controller period rather than the physics step because the loop lives in the
-// controller object, which every driver (sim, scenario, hil internal, fit) calls once per
-// period; the held current leads the loop's mean over the period by T/2 (pi f T of phase at f:
-// 0.9 deg at 100 Hz and 20 kHz).
+// at a period T: the command is held over the period (it is what the controller wrote) and the
+// loop's response to it is exact at the period's end (zero-order hold), so the discretisation
+// adds no error of its own. The drivers that step the physics (sim, scenario, fit) advance it
+// at their physics step (ReferenceController::Advance), as the analog loop of a real amplifier
+// runs between the controller's samples; a driver without one (the stand-in controller process)
+// at the controller period, where the held current leads the loop's mean over the period by T/2.
 #include "rt_core/controller_form_params.hpp"
 
 namespace ambdrop {

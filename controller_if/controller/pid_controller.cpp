@@ -39,10 +39,11 @@ void PidAxis::HoldAtRest(double reading_m, double current_A) noexcept {
   derivative_ = 0.0;  // of a constant reading; the first sample primes the error as always
 }
 
-ReferenceController::ReferenceController(const Model& model, double period_s)
+ReferenceController::ReferenceController(const Model& model, double period_s, double physics_step_s)
     : linear_form_(model.params.controller.form == ControllerForm::kLinear),
       delayed_(model.params.controller.delay_samples > 0),
       amplified_(model.params.controller.amplifier.enabled),
+      continuous_(amplified_ && physics_step_s > 0.0),
       ambs_(static_cast<int>(model.params.ambs.size())) {
   const ControllerParams& controller = model.params.controller;
   const PidParams& pid = controller.pid;
@@ -82,8 +83,12 @@ ReferenceController::ReferenceController(const Model& model, double period_s)
         if (levitated.moved) axes_[a][axis].HoldAtRest(levitated.reading_shift_m[a][axis], start_A);
       }
       start_A_[a][axis] = start_A;
+      command_A_[a][axis] = start_A;
       delay_[a][axis] = CommandDelay(controller.delay_samples, start_A);
-      if (amplified_) amplifier_[a][axis] = AmplifierLoop(controller.amplifier, period_s, start_A);
+      if (amplified_) {
+        amplifier_[a][axis] =
+            AmplifierLoop(controller.amplifier, continuous_ ? physics_step_s : period_s, start_A);
+      }
     }
   }
 }
@@ -95,8 +100,19 @@ void ReferenceController::Update(const SensorReadings& readings, ControlInput* i
       double current =
           linear_form_ ? linear_[a][axis].Update(reading) : axes_[a][axis].Update(reading);
       if (delayed_) current = delay_[a][axis].Push(current);
+      command_A_[a][axis] = current;
+      if (continuous_) continue;
       if (amplified_) current = amplifier_[a][axis].Update(current);
       input->amb[a].current_A[axis] = current;
+    }
+  }
+}
+
+void ReferenceController::Advance(ControlInput* input) noexcept {
+  if (!continuous_) return;
+  for (int a = 0; a < ambs_; ++a) {
+    for (int axis = 0; axis < 2; ++axis) {
+      input->amb[a].current_A[axis] = amplifier_[a][axis].Update(command_A_[a][axis]);
     }
   }
 }

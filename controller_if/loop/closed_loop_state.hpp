@@ -17,7 +17,8 @@ struct ClosedLoopState {
   ClosedLoopState(const Model& model, std::int64_t substeps, bool controlled)
       : driver(model, controlled ? substeps : 0) {
     if (controlled) {
-      controller.emplace(model, static_cast<double>(substeps) * model.params.simulation.step_s);
+      controller.emplace(model, static_cast<double>(substeps) * model.params.simulation.step_s,
+                         model.params.simulation.step_s);
     }
   }
   StepDriver driver;

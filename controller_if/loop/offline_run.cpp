@@ -101,8 +101,10 @@ struct OfflineHooks : StepHooks {
   // the power state overrides its current with the one it had when power failed.
   bool Command(StepDriver& d, std::int64_t k) noexcept {
     if (internal) {
-      if (k % substeps != 0) return true;
-      controller->Update(d.readings(), &controller_out);
+      const bool sample = k % substeps == 0;
+      if (!sample && !controller->advances_amplifier()) return true;
+      if (sample) controller->Update(d.readings(), &controller_out);
+      controller->Advance(&controller_out);
       for (std::size_t a = 0; a < model.params.ambs.size(); ++a) {
         d.command()[a] = controller_out.amb[a].current_A;
       }

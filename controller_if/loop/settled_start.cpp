@@ -41,6 +41,7 @@ SettleResult SettleClosedLoop(const Model& model, Simulator& sim, State* state,
       if (k == mark) at_mark = obs;
       controller->Update(readings, input);
     }
+    controller->Advance(input);
     const StepStatus status = sim.Step(state, *input);
     if (status != StepStatus::kOk) {
       result.status = status;
