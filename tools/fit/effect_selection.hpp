@@ -147,12 +147,15 @@ struct Selection {
   /// The same on the levitated time before the trigger (CostScope::kLevitated, closed loop
   /// only): each channel's mean, 1X and 2X there, from the model's own levitated state.
   Part levitated;
+  /// The same on the levitated currents' noise spectrum (CostScope::kSpectrum, closed loop
+  /// with noisy sensors only): what the loop does with its sensors' noise.
+  Part spectrum;
   /// Which part the verdict judges, and whose numbers the top-level fields hold: "early" where
   /// the drop's start departs from the declared model beyond its limit; else whichever of
-  /// "levitated", "speeds" and "whole" departs beyond its limit by the largest factor ("whole"
-  /// where none departs). Where the start and the levitated time both depart, each judges in
-  /// turn and the choice that agrees better with both is kept.
-  /// `explained` needs the other parts within their limits too.
+  /// "levitated", "spectrum", "speeds" and "whole" departs beyond its limit by the largest factor
+  /// ("whole" where none departs). Where the start and the levitated time both depart, each judges
+  /// in turn and the choice that agrees better with both is kept. `explained` needs the other parts
+  /// within their limits too.
   std::string judged_on = "whole";
   /// The limit the verdict on the chosen effects used: the one widened by model_floor_after,
   /// capped by SelectionRules::explained_cut (= limit with nothing chosen).

@@ -240,7 +240,7 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   json.Key("judged_on").String(s.judged_on);
   for (const auto& [name, part] :
        {std::pair{"whole", &s.whole}, std::pair{"early", &s.early}, std::pair{"speeds", &s.speeds},
-        std::pair{"levitated", &s.levitated}}) {
+        std::pair{"levitated", &s.levitated}, std::pair{"spectrum", &s.spectrum}}) {
     if (!part->compared) continue;
     json.Key(name).BeginObject();
     json.Key("rms_before").Number(part->rms_before);
@@ -363,6 +363,10 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
           ? "the levitated time before the trigger (each displacement's and current's mean, 1X "
             "and 2X there, from the model's own levitated state), where it departs beyond its "
             "limit"
+      : s.judged_on == "spectrum"
+          ? "the levitated currents' noise spectrum (what the loop does with its sensors' noise, "
+            "each band in units of its own spread, from noise draws of the model's controller), "
+            "where it departs beyond its limit"
           : "the whole record",
       s.rms_before, s.rms_after, s.noise_floor, AboveNoise(s.rms_before, s.noise_floor),
       AboveNoise(s.rms_after, s.noise_floor));
@@ -383,7 +387,8 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
   for (const auto& [name, part] :
        {std::pair{"The whole record", &s.whole}, std::pair{"The drop's start", &s.early},
         std::pair{"The speeds", &s.speeds},
-        std::pair{"The levitated time (mean, 1X, 2X)", &s.levitated}}) {
+        std::pair{"The levitated time (mean, 1X, 2X)", &s.levitated},
+        std::pair{"The levitated currents' noise spectrum", &s.spectrum}}) {
     if (!part->compared) continue;
     md += fmt::format(
         "- {}: {:.4g} before, {:.4g} after, agreement limit {:.3g} (noise {:.3g}, step "

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -98,7 +99,7 @@ std::pair<std::size_t, std::size_t> RowsIn(const MeasuredRecord& r, const Measur
 MeasurementParams MeasurementFor(const MeasurementParams& measurement, CostScope scope) {
   MeasurementParams m = measurement;
   if (m.trigger_state_for_start && scope == CostScope::kEarly) m.trigger_state_from_record = true;
-  if (scope == CostScope::kLevitated) {
+  if (scope == CostScope::kLevitated || scope == CostScope::kSpectrum) {
     m.trigger_state_from_record = false;
     m.trigger_state_for_start = false;
   }
@@ -123,7 +124,8 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
   settled_from_s_ = t_end - std::min((t_end - trigger_s_) / 3.0, 0.1);
   const bool early_only = scope == CostScope::kEarly;
   if (early_only) run_.end_s = std::min(run_.end_s, early_end_s_);
-  const bool levitated = scope == CostScope::kLevitated;
+  const bool spectrum = scope == CostScope::kSpectrum;
+  const bool levitated = scope == CostScope::kLevitated || spectrum;
   // Open loop nothing levitates the model before the trigger: no levitated part.
   if (levitated && !closed) return;
   if (levitated) run_.end_s = std::min(run_.end_s, trigger_s_);
@@ -136,6 +138,19 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
   const std::size_t start_row = first_row_at(compare_from_s_);
   const std::size_t trigger_row = first_row_at(trigger_s_);
   const std::size_t settled_row = first_row_at(settled_from_s_);
+  // The noise the record's controller answers: its displacements' (median over the sensors).
+  if (spectrum) {
+    std::vector<double> sigmas;
+    for (const MeasurementChannel& ch : measurement.channels) {
+      if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
+      const int col = record.Column(ch.column);
+      if (col >= 0) sigmas.push_back(NoiseSigma(record.values[col], start_row, trigger_row));
+    }
+    if (!sigmas.empty()) {
+      std::nth_element(sigmas.begin(), sigmas.begin() + sigmas.size() / 2, sigmas.end());
+      spectrum_noise_m_ = sigmas[sigmas.size() / 2];
+    }
+  }
   for (std::size_t c = 0; c < measurement.channels.size(); ++c) {
     const MeasurementChannel& ch = measurement.channels[c];
     const int col = record.Column(ch.column);
@@ -146,6 +161,7 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
     if (levitated && ch.quantity != MeasuredQuantity::kDisplacement && !CurrentLike(ch.quantity)) {
       continue;
     }
+    if (spectrum && (!CurrentLike(ch.quantity) || !(spectrum_noise_m_ > 0.0))) continue;
     // Open loop no controller runs, so nothing predicts its command: not compared.
     if (ch.quantity == MeasuredQuantity::kControllerCommand && !closed) continue;
     // power_loss = "from_record": the coil currents drive the model; they are its input.
@@ -174,7 +190,9 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
     std::vector<Block> blocks;
     const auto [lev_first, lev_end] = RowsIn(record, ch, trigger_s_, start_row, trigger_row);
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    if (levitated) {
+    if (spectrum) {
+      // Its blocks are the levitated part's.
+    } else if (levitated) {
       const std::vector<double> noise =
           SynchronousBlockNoise(record.time_s, v, lev_first, lev_end, spin);
       if (noise.empty()) continue;  // too few turns or rows to tell noise from content
@@ -214,7 +232,7 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
       blocks.push_back({c, settled_first, std::vector<double>(n, 1.0 / static_cast<double>(n)), 0.0,
                         0.0, 0.0, nan});
     }
-    if (raw.empty() && blocks.empty()) continue;
+    if (raw.empty() && blocks.empty() && !spectrum) continue;
     // Range and noise over the window alone: what lies outside it (a channel gone bad after
     // the trigger) must not set its weight.
     const std::size_t range_first = std::max(start_row, window_first);
@@ -253,7 +271,60 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
       b.measured = Apply(b, v);
       blocks_.push_back(std::move(b));
     }
-    ++channels_;
+    if (!spectrum) {
+      ++channels_;
+    } else {
+      auto plan = std::make_shared<const SpectrumPlan>(
+          PlanSpectrum(record.time_s, lev_first, lev_end, spin));
+      std::vector<double> measured = BandPowers(*plan, v);
+      const bool positive =
+          std::all_of(measured.begin(), measured.end(), [](double p) { return p > 0.0; });
+      if (measured.size() >= 4 && positive) {
+        const double weight = 1.0 / std::sqrt(static_cast<double>(measured.size()) - 2.0);
+        spectrum_bands_ += measured.size();
+        spectra_.push_back({c, std::move(plan), std::move(measured), weight});
+        ++channels_;
+      } else {
+        range_.back() = 0.0;
+      }
+    }
+  }
+}
+
+void RecordCost::SpectrumResidual(const std::shared_ptr<const ModelParams>& params,
+                                  const RecordRunOptions& options, Eigen::VectorXd* r,
+                                  Eigen::Index i) const {
+  // The model's mean spectrum over its noise draws; none if a run did not reach the trigger.
+  std::vector<std::vector<double>> mean(spectra_.size());
+  bool reached = params != nullptr;
+  for (int k = 1; reached && k <= kSpectrumRuns; ++k) {
+    RecordRunOptions o = options;
+    o.end_s = std::min(o.end_s, trigger_s_);
+    o.jitter_sigma_m = spectrum_noise_m_;
+    o.jitter_seed = static_cast<std::uint64_t>(k);
+    o.keep_states = false;
+    const SimulatedRecord run = SimulateOnRecord(*params, measurement_, record_, o);
+    for (std::size_t s = 0; s < spectra_.size() && reached; ++s) {
+      const std::vector<double> p =
+          run.values.size() == measurement_.channels.size()
+              ? BandPowers(*spectra_[s].plan, run.values[spectra_[s].channel])
+              : std::vector<double>{};
+      if (p.size() != spectra_[s].measured.size()) {
+        reached = false;
+        break;
+      }
+      if (mean[s].empty()) mean[s].assign(p.size(), 0.0);
+      for (std::size_t b = 0; b < p.size(); ++b) mean[s][b] += p[b] / kSpectrumRuns;
+    }
+  }
+  for (std::size_t s = 0; s < spectra_.size(); ++s) {
+    const Spectrum& sp = spectra_[s];
+    const SpectrumMatch m =
+        reached ? MatchSpectra(*sp.plan, sp.measured, mean[s], kSpectrumRuns) : SpectrumMatch{};
+    for (std::size_t b = 0; b < sp.measured.size(); ++b) {
+      // Not reached, or nothing to compare: ten standard deviations off in every band.
+      (*r)(i++) = m.z.size() == sp.measured.size() ? m.z[b] * sp.weight : 10.0 * sp.weight;
+    }
   }
 }
 
@@ -288,6 +359,8 @@ std::vector<double> RecordCost::ChannelNoiseSse() const {
     for (const double k : b.coefficients) sum_sq += k * k;
     expected[b.channel] += std::pow(sigma[b.channel] * b.weight, 2) * sum_sq;
   }
+  // A spectrum's z's, two numbers fitted away, over sqrt(bands - 2): noise alone leaves 1.
+  for (const Spectrum& sp : spectra_) expected[sp.channel] += 1.0;
   return expected;
 }
 
@@ -320,6 +393,7 @@ Eigen::VectorXd RecordCost::Residual(const SimulatedRecord& sim) const {
     const double model = Apply(b, sim.values[b.channel]);
     r(i++) = std::isfinite(model) ? (b.measured - model) * b.weight : b.range * b.weight;
   }
+  if (!spectra_.empty()) SpectrumResidual(sim.params, sim.options, &r, i);
   return r;
 }
 
@@ -328,6 +402,9 @@ Eigen::VectorXd RecordCost::Unreached() const {
   Eigen::Index i = 0;
   for (const Sample& s : samples_) r(i++) = s.range * s.weight;
   for (const Block& b : blocks_) r(i++) = b.range * b.weight;
+  for (const Spectrum& sp : spectra_) {
+    for (std::size_t b = 0; b < sp.measured.size(); ++b) r(i++) = 10.0 * sp.weight;
+  }
   return r;
 }
 
@@ -336,6 +413,11 @@ std::vector<double> RecordCost::ChannelSse(const Eigen::VectorXd& residual) cons
   Eigen::Index i = 0;
   for (const Sample& s : samples_) sse[s.channel] += residual(i) * residual(i), ++i;
   for (const Block& b : blocks_) sse[b.channel] += residual(i) * residual(i), ++i;
+  for (const Spectrum& sp : spectra_) {
+    for (std::size_t b = 0; b < sp.measured.size(); ++b) {
+      sse[sp.channel] += residual(i) * residual(i), ++i;
+    }
+  }
   return sse;
 }
 

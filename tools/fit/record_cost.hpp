@@ -15,11 +15,13 @@
 // different units weigh alike, and the vector's length is the same for every model tried.
 #include <Eigen/Core>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "io/config/config_measurement.hpp"
 #include "io/files/measured_csv.hpp"
 #include "rt_core/model_params.hpp"
+#include "tools/fit/levitated_spectrum.hpp"
 #include "tools/fit/simulate_on_record.hpp"
 
 namespace ambdrop {
@@ -53,6 +55,15 @@ enum class CostScope {
   /// ranges as the other parts are, the currents' 1X (a tenth of their range) outweighed the
   /// displacements' (a thousandth) and pulled that unbalance's phase 0.13 rad off.
   kLevitated,
+  /// Only each current's noise spectrum over the levitated time (levitated_spectrum.hpp), where
+  /// the record's sensors are noisy: the model's controller answers noise of the record's level
+  /// (RecordCost::kSpectrumRuns draws of it), and each band departs in units of its own spread,
+  /// each current's spectrum weighing as one channel. What the loop does with its noise (a lag
+  /// in the acquisition chain, a computation delay, a sensor's gain) shows there and nowhere
+  /// else before the trigger. A part of its own: beside the levitated blocks its departure
+  /// drowned (a chain lag that took its bands 1.8 standard deviations off left the levitated
+  /// part at 1.3 against its limit of 1.5).
+  kSpectrum,
 };
 
 /// The measurement a cost of `scope` runs its model with: with trigger_state = "record_start"
@@ -91,7 +102,7 @@ class RecordCost {
   /// NoiseFloor() squared.
   std::vector<double> ChannelNoiseSse() const;
 
-  std::size_t size() const { return samples_.size() + blocks_.size(); }
+  std::size_t size() const { return samples_.size() + blocks_.size() + spectrum_bands_; }
   int channels() const { return channels_; }
   /// Channels left out because their range is within ten times their noise.
   int uninformative_channels() const { return uninformative_; }
@@ -106,6 +117,12 @@ class RecordCost {
   const RecordRunOptions& run_options() const { return run_; }
   double trigger_time_s() const { return trigger_s_; }
   CostScope scope() const { return scope_; }
+  /// CostScope::kSpectrum: the currents whose noise spectrum is compared, and the sensor noise
+  /// (m) the model's controller answers for it (0: none compared).
+  std::size_t spectra() const { return spectra_.size(); }
+  double spectrum_noise_m() const { return spectrum_noise_m_; }
+  /// Noise draws of the model whose mean spectrum is compared.
+  static constexpr int kSpectrumRuns = 4;
 
  private:
   struct Sample {
@@ -125,7 +142,16 @@ class RecordCost {
     /// white noise through the coefficients.
     double noise_var;
   };
+  struct Spectrum {  // a current's levitated noise spectrum: a channel of its own
+    std::size_t channel;
+    std::shared_ptr<const SpectrumPlan> plan;
+    std::vector<double> measured;  // band powers
+    double weight;                 // 1 / sqrt(bands - 2): noise alone leaves it 1
+  };
   double Apply(const Block& b, const std::vector<double>& values) const;
+  /// The spectra's part of the residual for `params` run with `options` (noise drawn).
+  void SpectrumResidual(const std::shared_ptr<const ModelParams>& params,
+                        const RecordRunOptions& options, Eigen::VectorXd* r, Eigen::Index i) const;
   const ModelParams& declared_;
   MeasurementParams measurement_;  ///< MeasurementFor(the caller's, scope)
   const MeasuredRecord& record_;
@@ -140,6 +166,9 @@ class RecordCost {
   std::vector<std::size_t> left_out_;
   std::vector<Sample> samples_;
   std::vector<Block> blocks_;
+  std::vector<Spectrum> spectra_;
+  std::size_t spectrum_bands_ = 0;
+  double spectrum_noise_m_ = 0.0;
   std::vector<int> column_;    // record column per measurement channel
   std::vector<double> range_;  // per measurement channel; 0 if not compared
 };

@@ -357,7 +357,7 @@ SimulatedRecord RunOnRecord(const ModelParams& declared, const MeasurementParams
     out.lead_misfit = fit.misfit;
   };
   if (controlled) {
-    controller.emplace(model, static_cast<double>(substeps) * dt);
+    controller.emplace(model, static_cast<double>(substeps) * dt, dt);
     controller->Initial(&input);
     state = driver.sim().InitialState(static_load);
     // As `ambdrop sim` starts it: settled first when the config asks (simulation.settle_s).
@@ -496,6 +496,10 @@ SimulatedRecord RunOnRecord(const ModelParams& declared, const MeasurementParams
       controller->Update(d.readings(), &input);
       keep_command();
     }
+    if (controlled && controller->advances_amplifier()) {
+      controller->Advance(&input);
+      keep_command();
+    }
     if ((!closed || lead_driven) && k < model.trigger_step) {
       measured_currents(t_start + static_cast<double>(k) * dt, false);
     }
@@ -564,11 +568,10 @@ SimulatedRecord SimulateOnRecord(const ModelParams& declared, const MeasurementP
                                  const MeasuredRecord& r, const RecordRunOptions& options) {
   SimulatedRecord out = RunOnRecord(declared, m, r, options);
   out.state_from_record = m.trigger_state_from_record;
-  // Only a fit whose parts take the state at the trigger two ways runs a run again.
-  if (m.trigger_state_for_start) {
-    out.params = std::make_shared<const ModelParams>(declared);
-    out.options = options;
-  }
+  // A cost may run it again its own way: a part that takes the state at the trigger otherwise,
+  // the levitated spectrum's noise draws (RecordCost::Residual).
+  out.params = std::make_shared<const ModelParams>(declared);
+  out.options = options;
   return out;
 }
 
