@@ -113,31 +113,22 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   Eigen::VectorXd speeds_before;
   const Selection::Part early = judge(early_cost, &early_before, measured.early);
   const Selection::Part speeds = judge(speeds_cost, &speeds_before, measured.speeds);
-  // Before the trigger the run is the model's own closed loop: the rotor's jitter at the
-  // trigger moves nothing there, and the step's sensitivity is its only floor.
-  Eigen::VectorXd levitated_before;
-  const Selection::Part levitated = [&] {
+  // Before the trigger (the levitated time, the spectrum) the run is the model's own closed
+  // loop: the rotor's jitter at the trigger moves nothing there, and the step's sensitivity is
+  // its only floor; a few dozen blocks or bands spread as a chi-square of their count.
+  const auto judge_levitated = [&](const std::optional<RecordCost>& c, Eigen::VectorXd* before) {
     Selection::Part part;
-    if (!levitated_cost) return part;
-    levitated_before = levitated_cost->Residual(cost.declared());
+    if (!c) return part;
+    *before = c->Residual(cost.declared());
     ModelFloors::Part known;
     known.start_sensitivity = 0.0;
-    return JudgePart(declared, *levitated_cost, levitated_before,
-                     levitated_cost->NoiseFloor() * ChiSquareHeadroom(levitated_cost->size()),
-                     rules, known);
-  }();
-  // The same for the spectrum: its bands spread as a chi-square of their count.
-  Eigen::VectorXd spectrum_before;
-  const Selection::Part spectrum = [&] {
-    Selection::Part part;
-    if (!spectrum_cost) return part;
-    spectrum_before = spectrum_cost->Residual(cost.declared());
-    ModelFloors::Part known;
-    known.start_sensitivity = 0.0;
-    return JudgePart(declared, *spectrum_cost, spectrum_before,
-                     spectrum_cost->NoiseFloor() * ChiSquareHeadroom(spectrum_cost->size()), rules,
+    return JudgePart(declared, *c, *before, c->NoiseFloor() * ChiSquareHeadroom(c->size()), rules,
                      known);
-  }();
+  };
+  Eigen::VectorXd levitated_before;
+  Eigen::VectorXd spectrum_before;
+  const Selection::Part levitated = judge_levitated(levitated_cost, &levitated_before);
+  const Selection::Part spectrum = judge_levitated(spectrum_cost, &spectrum_before);
   const auto departure = [](const Selection::Part& p) {
     return p.compared ? p.rms_before / std::max(p.limit, 1e-300) : 0.0;
   };

@@ -18,4 +18,12 @@ double NoiseSigma(const std::vector<double>& v, std::size_t first, std::size_t l
   return 1.4826 * *mid / std::sqrt(6.0);
 }
 
+double MedianNoiseSigma(const std::vector<const std::vector<double>*>& columns, std::size_t last) {
+  std::vector<double> sigmas;
+  for (const std::vector<double>* c : columns) sigmas.push_back(NoiseSigma(*c, 0, last));
+  if (sigmas.empty()) return 0.0;
+  std::nth_element(sigmas.begin(), sigmas.begin() + sigmas.size() / 2, sigmas.end());
+  return sigmas[sigmas.size() / 2];
+}
+
 }  // namespace ambdrop

@@ -10,4 +10,8 @@ namespace ambdrop {
 /// Rows [first, last) of `values`; 0 for fewer than 3.
 double NoiseSigma(const std::vector<double>& values, std::size_t first, std::size_t last);
 
+/// The median over `columns` of NoiseSigma over rows [0, last): the noise a record's sensors
+/// carry (0 with no column).
+double MedianNoiseSigma(const std::vector<const std::vector<double>*>& columns, std::size_t last);
+
 }  // namespace ambdrop

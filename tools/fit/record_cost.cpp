@@ -139,17 +139,16 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
   const std::size_t trigger_row = first_row_at(trigger_s_);
   const std::size_t settled_row = first_row_at(settled_from_s_);
   // The noise the record's controller answers: its displacements' (median over the sensors).
+  // (Closed loop, the only kind with a spectrum, compares from the record's first row.)
   if (spectrum) {
-    std::vector<double> sigmas;
+    std::vector<const std::vector<double>*> columns;
     for (const MeasurementChannel& ch : measurement.channels) {
-      if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
       const int col = record.Column(ch.column);
-      if (col >= 0) sigmas.push_back(NoiseSigma(record.values[col], start_row, trigger_row));
+      if (ch.quantity == MeasuredQuantity::kDisplacement && col >= 0) {
+        columns.push_back(&record.values[col]);
+      }
     }
-    if (!sigmas.empty()) {
-      std::nth_element(sigmas.begin(), sigmas.begin() + sigmas.size() / 2, sigmas.end());
-      spectrum_noise_m_ = sigmas[sigmas.size() / 2];
-    }
+    spectrum_noise_m_ = MedianNoiseSigma(columns, trigger_row);
   }
   for (std::size_t c = 0; c < measurement.channels.size(); ++c) {
     const MeasurementChannel& ch = measurement.channels[c];

@@ -28,16 +28,13 @@ double DisplacementNoiseMedian(const RecordCost& cost) {
   const MeasuredRecord& r = cost.record();
   std::size_t last = 0;
   while (last < r.time_s.size() && r.time_s[last] < cost.trigger_time_s()) ++last;
-  std::vector<double> sigmas;
+  std::vector<const std::vector<double>*> columns;
   for (const MeasurementChannel& ch : cost.measurement().channels) {
     if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
     const int column = r.Column(ch.column);
-    if (column < 0) continue;
-    sigmas.push_back(NoiseSigma(r.values[static_cast<std::size_t>(column)], 0, last));
+    if (column >= 0) columns.push_back(&r.values[static_cast<std::size_t>(column)]);
   }
-  if (sigmas.empty()) return 0.0;
-  std::nth_element(sigmas.begin(), sigmas.begin() + sigmas.size() / 2, sigmas.end());
-  return sigmas[sigmas.size() / 2];
+  return MedianNoiseSigma(columns, last);
 }
 
 double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
