@@ -202,15 +202,69 @@ TEST(ConfigKeys, EveryRigRecordsItsNumbersWithUnitsAndClasses) {
 TEST(ConfigKeys, DefaultFitRangesHoldTheValueInsideTheAcceptedRange) {
   for (const std::string& rig : testing::RigConfigFiles()) {
     SCOPED_TRACE(rig);
-    for (const ConfigKey& k : LoadConfig(testing::ConfigPath(rig)).keys) {
+    const std::vector<ConfigKey> keys = LoadConfig(testing::ConfigPath(rig)).keys;
+    for (const ConfigKey& k : keys) {
       if (k.key_class != KeyClass::kPhysical) continue;
-      const FitRange r = DefaultFitRange(k);
+      const FitRange r = DefaultFitRange(k, keys);
       EXPECT_LT(r.lower, r.upper) << k.path;
       EXPECT_TRUE(Accepted(k, r.lower) && Accepted(k, r.upper))
           << k.path << " [" << r.lower << ", " << r.upper << "]";
       EXPECT_TRUE(r.lower <= k.value && k.value <= r.upper) << k.path << " = " << k.value;
     }
   }
+}
+
+// A station's range does not depend on where the axial origin is, reaches towards its
+// neighbours and stops short of them, and takes no more than a tenth of the machine.
+TEST(ConfigKeys, AStationsRangeIsBoundedByItsNeighboursWhereverTheOriginIs) {
+  const auto station = [](std::string path, double z) {
+    ConfigKey k;
+    k.path = std::move(path);
+    k.value = z;
+    k.unit = "m";
+    k.key_class = KeyClass::kPhysical;
+    return k;
+  };
+  const auto machine = [&](double origin) {
+    return std::vector<ConfigKey>{station("tdb.nde.position_m", origin + 0.10),
+                                  station("rotor.discs[0].position_m", origin + 0.30),
+                                  station("unbalance.disc.position_m", origin + 0.3005),
+                                  station("sensor.de.position_m", origin + 0.32),
+                                  station("amb.de.position_m", origin + 0.70),
+                                  station("tdb.de.position_m", origin + 1.00)};
+  };
+  for (const double origin : {0.0, 0.5, -0.2}) {
+    SCOPED_TRACE(origin);
+    const std::vector<ConfigKey> keys = machine(origin);
+    // The disc: 0.2 m to the TDB below (a tenth of the 0.9 m machine caps it at 0.09 m), 0.02 m
+    // to the sensor above (nine tenths of it); the unbalance at the disc is the disc's own.
+    const FitRange disc = DefaultFitRange(keys[1], keys);
+    EXPECT_NEAR(disc.lower - origin, 0.30 - 0.09, 1e-12);
+    EXPECT_NEAR(disc.upper - origin, 0.30 + 0.9 * 0.02, 1e-12);
+    // The last station: as far out as its gap inwards (0.3 m), capped at 0.09 m.
+    const FitRange end = DefaultFitRange(keys[5], keys);
+    EXPECT_NEAR(end.lower - origin, 1.00 - 0.09, 1e-12);
+    EXPECT_NEAR(end.upper - origin, 1.00 + 0.09, 1e-12);
+    for (const ConfigKey& k : keys) {
+      const FitRange r = DefaultFitRange(k, keys);
+      EXPECT_TRUE(r.lower < k.value && k.value < r.upper) << k.path;
+      for (const ConfigKey& other : keys) {
+        if (std::abs(other.value - k.value) > 1e-3) {
+          EXPECT_FALSE(r.lower <= other.value && other.value <= r.upper)
+              << k.path << " reaches " << other.path;
+        }
+      }
+    }
+  }
+  // A station switched off is nobody's neighbour; a key that is not a station keeps its range.
+  std::vector<ConfigKey> keys = machine(0.0);
+  keys[3].in_force = false;
+  EXPECT_NEAR(DefaultFitRange(keys[1], keys).upper, 0.30 + 0.09, 1e-12);
+  ConfigKey clearance = station("tdb.de.clearance_m", 2e-4);
+  const FitRange alone = DefaultFitRange(clearance);
+  const FitRange among = DefaultFitRange(clearance, keys);
+  EXPECT_EQ(alone.lower, among.lower);
+  EXPECT_EQ(alone.upper, among.upper);
 }
 
 // Integer keys are in the registry too, marked integer with the reader's range, so that a fit
@@ -301,7 +355,7 @@ TEST(ConfigKeys, EveryDeclaredPhysicalKeyIsReachedByItsSetPath) {
     const std::vector<ConfigKey> declared = LoadConfig(path).keys;
     for (const ConfigKey& k : declared) {
       if (k.key_class != KeyClass::kPhysical || !k.declared) continue;
-      const FitRange r = DefaultFitRange(k);
+      const FitRange r = DefaultFitRange(k, declared);
       double w = 0.5 * (r.lower + r.upper);
       if (w == k.value) w = r.lower + 0.25 * (r.upper - r.lower);
       // An integer key takes whole numbers (its range's ends are whole).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <utility>
 
@@ -101,7 +102,6 @@ FitRange DefaultFitRange(const ConfigKey& key) {
   const double v = key.value;
   const double span = ZeroSpan(key.unit);
   FitRange r;
-  const std::string_view last = LastSegment(key.path);
   if (key.integer) {
     // A count (samples of delay, balls): whole numbers, half to twice a declared count, or a
     // couple either side of zero, inside the reader's range.
@@ -112,9 +112,10 @@ FitRange DefaultFitRange(const ConfigKey& key) {
     r.upper = std::min(r.upper, std::floor(key.upper));
     return r;
   }
-  if (key.unit == "m" && (last == "position_m" || last == "centre_of_mass_m")) {
-    // A station along the shaft: off by what a drawing or a mounting gets wrong, not by a
-    // factor of two (which would move it past its neighbours).
+  if (IsStationKey(key)) {
+    // A station along the shaft, its neighbours unknown: off by what a drawing or a mounting
+    // gets wrong, not by a factor of two (which would move it past its neighbours). The
+    // overload below knows them.
     const double half_width = std::max(0.1 * std::abs(v), 0.01);
     r = {v - half_width, v + half_width};
   } else if (key.unit == "rad") {
@@ -126,6 +127,50 @@ FitRange DefaultFitRange(const ConfigKey& key) {
     const double half_width = std::max(0.5 * std::abs(v), span);
     r = {v - half_width, v + half_width};
   }
+  r.lower = std::max(r.lower, key.lower);
+  r.upper = std::min(r.upper, key.upper);
+  if (!key.lower_inclusive && r.lower <= key.lower) r.lower = std::nextafter(key.lower, r.upper);
+  if (!key.upper_inclusive && r.upper >= key.upper) r.upper = std::nextafter(key.upper, r.lower);
+  return r;
+}
+
+bool IsStationKey(const ConfigKey& key) {
+  const std::string_view last = LastSegment(key.path);
+  return key.unit == "m" && (last == "position_m" || last == "centre_of_mass_m");
+}
+
+FitRange DefaultFitRange(const ConfigKey& key, const std::vector<ConfigKey>& keys) {
+  const FitRange own = DefaultFitRange(key);
+  if (!IsStationKey(key) || !std::isfinite(key.value)) return own;
+  // A drawing or a mounting gets a station wrong by some part of the distance to the next
+  // part along the shaft, never past it (a disc does not swap places with a bearing), and
+  // whatever the axial origin: ten per cent of z was ten per cent of where the origin happened
+  // to be (a station 3 cm from the NDE end could move 3 mm, one at 54 cm, 54 mm). Stations
+  // within a millimetre of it (a sensor at its magnet, an unbalance at its disc) are its own.
+  // Nor by more than a tenth of the machine (the span of its stations): two magnets with
+  // nothing declared between them are not a magnet's length of doubt.
+  constexpr double kSameStation_m = 1e-3;
+  constexpr double kShareOfGap = 0.9;
+  constexpr double kShareOfMachine = 0.1;
+  double below = -std::numeric_limits<double>::infinity();
+  double above = std::numeric_limits<double>::infinity();
+  double first = key.value, last = key.value;
+  for (const ConfigKey& k : keys) {
+    if (&k == &key || k.path == key.path || !k.in_force || !IsStationKey(k) ||
+        !std::isfinite(k.value)) {
+      continue;
+    }
+    first = std::min(first, k.value);
+    last = std::max(last, k.value);
+    if (k.value < key.value - kSameStation_m) below = std::max(below, k.value);
+    if (k.value > key.value + kSameStation_m) above = std::min(above, k.value);
+  }
+  if (!std::isfinite(below) && !std::isfinite(above)) return own;
+  const double cap = kShareOfMachine * (last - first);
+  const double gap_below = std::isfinite(below) ? key.value - below : above - key.value;
+  const double gap_above = std::isfinite(above) ? above - key.value : key.value - below;
+  FitRange r{key.value - std::min(kShareOfGap * gap_below, cap),
+             key.value + std::min(kShareOfGap * gap_above, cap)};
   r.lower = std::max(r.lower, key.lower);
   r.upper = std::min(r.upper, key.upper);
   if (!key.lower_inclusive && r.lower <= key.lower) r.lower = std::nextafter(key.lower, r.upper);

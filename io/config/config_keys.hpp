@@ -56,6 +56,15 @@ struct FitRange {
   double upper = 0.0;
 };
 FitRange DefaultFitRange(const ConfigKey& key);
+/// The same with the config's other keys known: a station along the shaft (`position_m`,
+/// `centre_of_mass_m`) may then be anywhere up to nine tenths of the way to its neighbouring
+/// stations (the other items' stations in force, those within a millimetre of it aside; beyond
+/// the last one, as far as the gap on its other side), and no further than a tenth of the span
+/// of all stations either way; with no neighbour, the range above.
+FitRange DefaultFitRange(const ConfigKey& key, const std::vector<ConfigKey>& keys);
+
+/// true for a station along the shaft: a key `...position_m` or `...centre_of_mass_m` in metres.
+bool IsStationKey(const ConfigKey& key);
 
 /// The key with this path among `keys`; nullptr if no reader took it.
 const ConfigKey* FindKey(const std::vector<ConfigKey>& keys, std::string_view path);

@@ -30,7 +30,7 @@ int RunKeysCommand(const KeysOptions& options) {
     json.Key("config").String(options.config_path);
     json.Key("keys").BeginArray();
     for (const ConfigKey* k : shown) {
-      const FitRange range = DefaultFitRange(*k);
+      const FitRange range = DefaultFitRange(*k, config.keys);
       json.BeginObject();
       json.Key("path").String(k->path);
       json.Key("value").Number(k->value);
@@ -53,7 +53,7 @@ int RunKeysCommand(const KeysOptions& options) {
   fmt::print("{:<52} {:>14} {:<9} {:<11} {:<27} {}\n", "key (--set path)", "value", "unit", "class",
              "fit range", "declared at");
   for (const ConfigKey* k : shown) {
-    const FitRange range = DefaultFitRange(*k);
+    const FitRange range = DefaultFitRange(*k, config.keys);
     // An integer key's range holds whole numbers only ("[0, 2] int").
     const std::string fit =
         k->key_class == KeyClass::kPhysical

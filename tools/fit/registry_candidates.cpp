@@ -107,7 +107,7 @@ std::vector<std::string> KeysSetBy(const std::vector<Effect>& effects) {
   return paths;
 }
 
-std::string NotACandidateBecause(const ConfigKey& key,
+std::string NotACandidateBecause(const ConfigKey& key, const std::vector<ConfigKey>& keys,
                                  const std::vector<std::string>& set_by_library) {
   if (key.key_class != KeyClass::kPhysical) {
     return fmt::format("a {} key, not the machine's", KeyClassName(key.key_class));
@@ -120,7 +120,7 @@ std::string NotACandidateBecause(const ConfigKey& key,
   if (key.path.starts_with("gravity.")) return "the site's gravity";
   if (key.path.starts_with("rotor.sections[")) return "the shaft's drawing";
   if (!std::isfinite(key.value)) return "not a finite number";
-  const FitRange range = DefaultFitRange(key);
+  const FitRange range = DefaultFitRange(key, keys);
   if (!(range.lower < range.upper)) return "its accepted range leaves nothing to search";
   return {};
 }
@@ -133,8 +133,8 @@ std::vector<Effect> RegistryCandidates(const ConfigVariants& config,
   std::vector<std::string> patterns;
   std::map<std::string, std::vector<std::pair<ConfigKey, FitRange>>> groups;
   for (const ConfigKey& key : config.declared().keys) {
-    if (!NotACandidateBecause(key, set_by_library).empty()) continue;
-    const FitRange range = AcceptedRange(config, key, DefaultFitRange(key));
+    if (!NotACandidateBecause(key, config.declared().keys, set_by_library).empty()) continue;
+    const FitRange range = AcceptedRange(config, key, DefaultFitRange(key, config.declared().keys));
     if (!(range.lower < range.upper)) continue;
     const ItemKey split = SplitItem(key.path);
     effects.push_back(DeclaredValueOff(

@@ -18,7 +18,7 @@ namespace ambdrop {
 /// with their physics), a table switched off, the site's gravity, the shaft's drawing (section
 /// lengths and diameters: the rotor's masses and stiffness are fitted through its materials and
 /// discs), a key whose accepted range leaves nothing to search.
-std::string NotACandidateBecause(const ConfigKey& key,
+std::string NotACandidateBecause(const ConfigKey& key, const std::vector<ConfigKey>& keys,
                                  const std::vector<std::string>& set_by_library);
 
 /// The paths the effects' overrides set (at their first starts), sorted and unique.
@@ -27,7 +27,8 @@ std::vector<std::string> KeysSetBy(const std::vector<Effect>& effects);
 /// "The declared value is off" for every physical key of `config` that NotACandidateBecause
 /// lets through, each alone (named by its path), and for a key that several TDBs, AMBs or
 /// sensors have (not a station), all of theirs together, scaled by one factor (named
-/// "tdb.*.spin.inertia_kg_m2"). Each range is the registry's default (DefaultFitRange), narrowed
+/// "tdb.*.spin.inertia_kg_m2"). Each range is the registry's default (DefaultFitRange with the
+/// config's keys: a station up to its neighbours), narrowed
 /// to what the config accepts with the other keys as declared (a sensor cannot leave the shaft).
 /// Each is screened (Effect::screened); its family is the key without the item, so the one-item
 /// and all-items forms of a key are one family. In registry order.
