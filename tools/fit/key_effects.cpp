@@ -39,10 +39,10 @@ Effect DeclaredValueOff(const ConfigKey& key, KeyEffectInfo info, FitRange range
   e.revealed_by = std::move(info.revealed_by);
   EffectParameter p{LastSegment(key.path), range.lower, range.upper,
                     StartsAround(key.value, range.lower, range.upper)};
-  // A station's scale is its gaps to its neighbours, not its distance from the axial origin.
+  // A station's scale is its gaps to its neighbours, not its distance from the axial origin:
+  // from where it is declared and from either end of its range.
   if (IsStationKey(key)) {
-    const double v = std::clamp(key.value, range.lower, range.upper);
-    p.starts = {v, 0.5 * (range.lower + v), 0.5 * (v + range.upper)};
+    p.starts = {std::clamp(key.value, range.lower, range.upper), range.lower, range.upper};
   }
   // Declared 0, it may be any size from nothing: a small change is relative to the value.
   p.magnitude = key.value == 0.0;
