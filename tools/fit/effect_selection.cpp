@@ -472,15 +472,16 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
     if (j.first_within > 0 || j.first_match > 0) {
       s.verdict = "explained";
       s.reason += fmt::format(
-          "; run {} of {} of the fitted model with its controller answering sensor noise of the "
-          "record's level ({:.2g} m) {}: what departs after the start is a draw of the rotor's "
-          "jitter when the power failed",
-          j.first_within > 0 ? j.first_within : j.first_match, j.draws, j.jitter_sigma_m,
+          "; run {} of {} of the fitted model {} {}: what departs after the start is {}",
+          j.first_within > 0 ? j.first_within : j.first_match, j.draws, DrawnText(j),
           j.first_within > 0
               ? fmt::format("agrees with the record on the speeds ({:.3g}, limit {:.3g})",
                             j.within_rms, s.speeds.limit_after)
               : fmt::format("is {} as the record's drop is, where the noise-free run's is {}",
-                            j.record_mode, j.model_mode));
+                            j.record_mode, j.model_mode),
+          j.from_estimate ? "within what the record leaves open of the rotor's state when the "
+                            "power failed"
+                          : "a draw of the rotor's jitter when the power failed");
     } else {
       if (j.ran) {
         s.reason += NoDrawAgreed(j, "fitted", " on the speeds");

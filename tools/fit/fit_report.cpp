@@ -148,6 +148,8 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   }
   if (s.jitter.ran) {
     json.Key("jitter_draws").BeginObject();
+    json.Key("drawn").String(s.jitter.from_estimate ? "trigger_state_estimate"
+                                                    : "controller_noise");
     json.Key("jitter_sigma_m").Number(s.jitter.jitter_sigma_m);
     json.Key("runs").Integer(s.jitter.draws);
     json.Key("first_within_limit").Integer(s.jitter.first_within);

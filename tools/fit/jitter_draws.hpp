@@ -19,7 +19,10 @@
 namespace ambdrop {
 
 struct JitterDraws {
-  bool ran = false;           ///< runs were made (closed loop, a jitter to draw)
+  bool ran = false;  ///< runs were made (closed loop, a jitter to draw)
+  /// measurement.trigger_state = "record": what was drawn is the state at the trigger (and
+  /// the held currents) from the uncertainty of its estimate, not the controller's noise.
+  bool from_estimate = false;
   bool mode_differs = false;  ///< the record's mode differs from the noise-free model's
   int draws = 0;              ///< runs made
   /// The first run (1-based) within the judged part's agreement limit there; 0: none.
@@ -37,10 +40,18 @@ struct JitterDraws {
 /// record's level before the trigger (the displacement channels' median noise), seeds 1 to
 /// `max_draws` in batches of four, until a run agrees with the record on `judged` within
 /// `judged_limit`, or, where the noise-free model's drop mode differs from the record's, a run
-/// is in the record's mode at every plane where both axes are measured. Nothing is run open
-/// loop or with measurement.trigger_state = "record" (the record's own jitter is then
-/// estimated). Deterministic: the batches do not depend on `threads`.
+/// is in the record's mode at every plane where both axes are measured. With
+/// measurement.trigger_state = "record" the rotor's jitter is the record's own, estimated from
+/// its lead window: what is drawn then is that estimate's error, normal along every axis of its
+/// covariance and each held current's standard error (trigger_state_probes.hpp; a seeded
+/// portable generator). Nothing is run open loop. Deterministic: the batches do not depend on
+/// `threads`.
 JitterDraws DrawJitter(const RecordCost& cost, const RecordCost& judged, double judged_limit,
                        int max_draws, int threads);
+
+/// What a run of the draws had drawn, for a reason's text: "with its controller answering
+/// sensor noise of the record's level (3e-07 m)" or "with its state at the trigger drawn from
+/// its estimate's uncertainty".
+std::string DrawnText(const JitterDraws& d);
 
 }  // namespace ambdrop

@@ -15,27 +15,6 @@ namespace ambdrop {
 
 namespace {
 
-// The run options of the shift z (standard deviations along each probe pair's axis).
-RecordRunOptions Shifted(const RecordCost& cost, const std::vector<RecordRunOptions>& probes,
-                         const Eigen::VectorXd& z) {
-  RecordRunOptions o = cost.run_options();
-  for (Eigen::Index k = 0; k < z.size(); ++k) {
-    const RecordRunOptions& plus = probes[static_cast<std::size_t>(2 * k)];
-    if (plus.trigger_state_shift.size() > 0) {
-      if (o.trigger_state_shift.size() == 0) {
-        o.trigger_state_shift = Eigen::VectorXd::Zero(plus.trigger_state_shift.size());
-      }
-      o.trigger_state_shift += z(k) * plus.trigger_state_shift;
-    }
-    for (std::size_t a = 0; a < kMaxAmbs; ++a) {
-      for (std::size_t axis = 0; axis < 2; ++axis) {
-        o.held_current_shift_A[a][axis] += z(k) * plus.held_current_shift_A[a][axis];
-      }
-    }
-  }
-  return o;
-}
-
 // The upper quantile of chi-square with `dof` degrees of freedom at the normal quantile
 // `normal_z` (Wilson and Hilferty 1931): a shift's squared size over the directions the
 // residual determines is that distributed on a record whose only error is the estimate's.
@@ -48,7 +27,7 @@ double ChiSquareQuantile(double dof, double normal_z) {
 }  // namespace
 
 StartStateShift FitStartStateShift(const RecordCost& cost, const Eigen::VectorXd& residual_before,
-                                   int threads) {
+                                   int threads, double target_rms) {
   StartStateShift out;
   out.rms_before = OverallRms(cost, residual_before.squaredNorm());
   out.rms_after = out.rms_before;
@@ -103,7 +82,7 @@ StartStateShift FitStartStateShift(const RecordCost& cost, const Eigen::VectorXd
     if (!step.allFinite()) break;
     const Eigen::VectorXd trial = z + length * step;
     const SimulatedRecord sim = SimulateOnRecord(cost.declared(), cost.measurement(), cost.record(),
-                                                 Shifted(cost, probes, trial));
+                                                 ShiftedAlong(cost, probes, trial));
     ++out.runs;
     const Eigen::VectorXd r_trial =
         sim.status == StepStatus::kOk ? cost.Residual(sim) : Eigen::VectorXd();
@@ -122,6 +101,31 @@ StartStateShift FitStartStateShift(const RecordCost& cost, const Eigen::VectorXd
   out.fitted = true;
   out.sigmas = z.norm();
   out.rms_after = OverallRms(cost, r.squaredNorm());
+  // On the flexible truth rig's clean seed 102 the maximum a posteriori shift took the start
+  // from 0.036 to 0.0042 at 6.1 standard deviations (5.2 plausible over 11 directions), its
+  // noise allowing 0.0047.
+  if (target_rms > 0.0 && out.rms_after <= target_rms && z.norm() > 0.0) {
+    double inside = 1.0, outside = 0.0;
+    double rms_inside = out.rms_after;
+    constexpr int kBisections = 6;
+    for (int i = 0; i < kBisections; ++i) {
+      const double t = 0.5 * (inside + outside);
+      const SimulatedRecord sim = SimulateOnRecord(
+          cost.declared(), cost.measurement(), cost.record(), ShiftedAlong(cost, probes, t * z));
+      ++out.runs;
+      const double rms = sim.status == StepStatus::kOk
+                             ? OverallRms(cost, cost.Residual(sim).squaredNorm())
+                             : std::numeric_limits<double>::infinity();
+      if (rms <= target_rms) {
+        inside = t;
+        rms_inside = rms;
+      } else {
+        outside = t;
+      }
+    }
+    out.sigmas = inside * z.norm();
+    out.rms_after = rms_inside;
+  }
   return out;
 }
 

@@ -33,4 +33,24 @@ std::vector<RecordRunOptions> TriggerStateProbes(const RecordCost& cost,
   return probes;
 }
 
+RecordRunOptions ShiftedAlong(const RecordCost& cost, const std::vector<RecordRunOptions>& probes,
+                              const Eigen::VectorXd& z) {
+  RecordRunOptions o = cost.run_options();
+  for (Eigen::Index k = 0; k < z.size(); ++k) {
+    const RecordRunOptions& plus = probes[static_cast<std::size_t>(2 * k)];
+    if (plus.trigger_state_shift.size() > 0) {
+      if (o.trigger_state_shift.size() == 0) {
+        o.trigger_state_shift = Eigen::VectorXd::Zero(plus.trigger_state_shift.size());
+      }
+      o.trigger_state_shift += z(k) * plus.trigger_state_shift;
+    }
+    for (std::size_t a = 0; a < kMaxAmbs; ++a) {
+      for (std::size_t axis = 0; axis < 2; ++axis) {
+        o.held_current_shift_A[a][axis] += z(k) * plus.held_current_shift_A[a][axis];
+      }
+    }
+  }
+  return o;
+}
+
 }  // namespace ambdrop

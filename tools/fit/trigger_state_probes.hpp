@@ -25,4 +25,10 @@ std::vector<RecordRunOptions> TriggerStateProbes(const RecordCost& cost,
                                                  const SimulatedRecord& base,
                                                  TriggerStateAxes axes);
 
+/// The run options of the shift `z` (standard deviations along each probe pair's axis, in the
+/// probes' order): `cost`'s own, its state at the trigger and held currents moved by
+/// sum z_k times the k-th pair's + probe.
+RecordRunOptions ShiftedAlong(const RecordCost& cost, const std::vector<RecordRunOptions>& probes,
+                              const Eigen::VectorXd& z);
+
 }  // namespace ambdrop

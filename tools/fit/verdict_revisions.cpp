@@ -39,13 +39,14 @@ void TakeNoEffect(Selection* s) {
 // "; none of N runs of the <which> model with the rotor's jitter drawn agreed ...": why no
 // draw of the jitter took a departure.
 std::string NoDrawAgreed(const JitterDraws& j, const char* which, const char* where) {
-  return fmt::format(
-      "; none of {} runs of the {} model with the rotor's jitter at the trigger drawn agreed "
-      "with the record{}{}",
-      j.draws, which, where,
-      j.mode_differs ? fmt::format(" or reached its drop mode ({}; the model's {})", j.record_mode,
-                                   j.model_mode)
-                     : std::string());
+  return fmt::format("; none of {} runs of the {} model with {} drawn agreed with the record{}{}",
+                     j.draws, which,
+                     j.from_estimate ? "its state at the trigger (the record's estimate)"
+                                     : "the rotor's jitter at the trigger",
+                     where,
+                     j.mode_differs ? fmt::format(" or reached its drop mode ({}; the model's {})",
+                                                  j.record_mode, j.model_mode)
+                                    : std::string());
 }
 
 // A drop whose start the declared model matches and that departs after the first impacts may
@@ -77,11 +78,12 @@ void TakeJitterDraws(const RecordCost& cost, const RecordCost& judged, const std
                      j.record_mode, j.model_mode, j.match_rms, s->rms_before);
     s->reason = fmt::format(
         "the declared model agrees with the drop's start ({:.3g}, limit {:.3g}), and run {} of "
-        "{} of it with its controller answering sensor noise of the record's level ({:.2g} m) "
-        "{}: what departs after the start is a draw of the rotor's jitter when the power "
-        "failed, and no effect is needed for it{}",
+        "{} of it {} {}: what departs after the start is {}, and no effect is needed for it{}",
         early.rms_before, early.limit, within ? j.first_within : j.first_match, j.draws,
-        j.jitter_sigma_m, what,
+        DrawnText(j), what,
+        j.from_estimate ? "within what the record leaves open of the rotor's state when the "
+                          "power failed"
+                        : "a draw of the rotor's jitter when the power failed",
         instead.empty() ? std::string()
                         : fmt::format(" ({} was not taken: it took the residual from {:.3g} to "
                                       "{:.3g}, {})",
@@ -130,12 +132,12 @@ void SetAsideChaoticExplanation(const Selection::Part& early, Selection* s) {
 // sigma and 0.032; a sensor gain: 26 sigma).
 void TakeStartStateShift(const RecordCost& early_cost, const Eigen::VectorXd& early_before,
                          const Selection::Part& early, const SelectionRules& rules, Selection* s) {
-  s->start_shift = FitStartStateShift(early_cost, early_before, rules.threads);
-  const StartStateShift& shift = s->start_shift;
   Selection noise_only;
   noise_only.noise_floor = early.noise_floor;
   noise_only.model_floor = early.step_sensitivity;
   const double noise_limit = AgreementLimit(noise_only, rules);
+  s->start_shift = FitStartStateShift(early_cost, early_before, rules.threads, noise_limit);
+  const StartStateShift& shift = s->start_shift;
   const std::string what = fmt::format(
       "the declared model with the state at the trigger shifted within its estimate's "
       "uncertainty ({:.2g} standard deviations over the {:.2g} directions the start "
