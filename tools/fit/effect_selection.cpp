@@ -479,9 +479,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
                             j.within_rms, s.speeds.limit_after)
               : fmt::format("is {} as the record's drop is, where the noise-free run's is {}",
                             j.record_mode, j.model_mode),
-          j.from_estimate ? "within what the record leaves open of the rotor's state when the "
-                            "power failed"
-                          : "a draw of the rotor's jitter when the power failed");
+          DepartureReachedText(j));
     } else {
       if (j.ran) {
         s.reason += NoDrawAgreed(j, "fitted", " on the speeds");

@@ -123,4 +123,10 @@ std::string DrawnText(const JitterDraws& d) {
                    d.jitter_sigma_m);
 }
 
+std::string DepartureReachedText(const JitterDraws& d) {
+  return d.from_estimate
+             ? "within what the record leaves open of the rotor's state when the power failed"
+             : "a draw of the rotor's jitter when the power failed";
+}
+
 }  // namespace ambdrop

@@ -54,4 +54,8 @@ JitterDraws DrawJitter(const RecordCost& cost, const RecordCost& judged, double 
 /// its estimate's uncertainty".
 std::string DrawnText(const JitterDraws& d);
 
+/// What a departure after the start that a run reached is: "a draw of the rotor's jitter when
+/// the power failed", or, drawn from the estimate, within what the record leaves open of it.
+std::string DepartureReachedText(const JitterDraws& d);
+
 }  // namespace ambdrop

@@ -80,10 +80,7 @@ void TakeJitterDraws(const RecordCost& cost, const RecordCost& judged, const std
         "the declared model agrees with the drop's start ({:.3g}, limit {:.3g}), and run {} of "
         "{} of it {} {}: what departs after the start is {}, and no effect is needed for it{}",
         early.rms_before, early.limit, within ? j.first_within : j.first_match, j.draws,
-        DrawnText(j), what,
-        j.from_estimate ? "within what the record leaves open of the rotor's state when the "
-                          "power failed"
-                        : "a draw of the rotor's jitter when the power failed",
+        DrawnText(j), what, DepartureReachedText(j),
         instead.empty() ? std::string()
                         : fmt::format(" ({} was not taken: it took the residual from {:.3g} to "
                                       "{:.3g}, {})",
