@@ -32,10 +32,12 @@ struct StartStateShift {
 /// after the trigger) with the declared model's residual `residual_before` there: the probes'
 /// central differences as the Jacobian, the record's noise as the samples' variance, a unit
 /// normal prior per probe axis; Gauss-Newton steps on that Jacobian, each checked by a run.
-/// With `target_rms` > 0 and the shift within it, the shift is then drawn back along its own
-/// ray to the smallest share of it that still leaves the start within `target_rms` (a
-/// bisection, six runs): the question is whether any plausible state agrees, and the maximum a
-/// posteriori shift also fits the noise's wiggles, which the samples outnumber the prior on.
+/// With `target_rms` > 0 and the shift within it, the question becomes whether any plausible
+/// state agrees (the maximum a posteriori shift also fits the noise's wiggles, which the
+/// samples outnumber the prior on): the least shift that the same Jacobian predicts within
+/// shares of `target_rms` (the discrepancy principle), the first a run confirms, then drawn back
+/// along its own ray to the smallest share of it that still leaves the start within
+/// `target_rms` (a bisection, six runs).
 StartStateShift FitStartStateShift(const RecordCost& cost, const Eigen::VectorXd& residual_before,
                                    int threads, double target_rms = 0.0);
 
