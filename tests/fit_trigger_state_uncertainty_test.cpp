@@ -142,10 +142,11 @@ TEST(FitTriggerStateUncertainty, TheEstimatesSpreadBoundsTheStartsDepartures) {
 // plausible size along every axis of the estimate's covariance takes it within the record's
 // noise (3.9 standard deviations over 11 directions, 0.0038 against 0.0048; the two redraws:
 // 3.1 and 3.0; drawn back along its ray to the least of it that stays within the noise, as the
-// fit does, 3.7 and 0.0045). The clean seed 102 departs by 0.036: the maximum a posteriori
-// shift, 6.1 standard deviations (5.8 drawn back along its ray), was beyond the plausible 5.2
-// and the fit named a disc's polar inertia; the least shift within the noise (the discrepancy
-// principle on the same Jacobian) is 1.6. A TDB 60 um off its centre (seed 3) departs too, and
+// fit did, 3.7 and 0.0045; the least shift within the noise, as it does now, 2.4 and 0.0047).
+// The clean seed 102 departs by 0.036: the maximum a posteriori shift, 6.1 standard deviations
+// (5.8 drawn back along its ray), was beyond the plausible 5.2 and the fit named a disc's polar
+// inertia; the least shift within the noise (the discrepancy principle on the same Jacobian)
+// is 1.2. A TDB 60 um off its centre (seed 3) departs too, and
 // no plausible shift takes its start there (166 standard deviations leave 0.032).
 TEST(FitTriggerStateUncertainty, ACleanStartIsWithinTheEstimatesReachAnOffsetTdbIsNot) {
   const ConfigVariants config = ConfigVariants::Load(kSource + "/tests/truth/flexible_pm_b.toml");

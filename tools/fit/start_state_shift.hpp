@@ -34,9 +34,11 @@ struct StartStateShift {
 /// normal prior per probe axis; Gauss-Newton steps on that Jacobian, each checked by a run.
 /// With `target_rms` > 0 and the shift within it, the question becomes whether any plausible
 /// state agrees (the maximum a posteriori shift also fits the noise's wiggles, which the
-/// samples outnumber the prior on): the least shift that the same Jacobian predicts within
-/// shares of `target_rms` (the discrepancy principle), the first a run confirms, then drawn back
-/// along its own ray to the smallest share of it that still leaves the start within
+/// samples outnumber the prior on): the least shift that the same Jacobian predicts within a
+/// share of `target_rms` (the discrepancy principle), linearised where the last run was (at most
+/// four runs), the least one a run confirms kept; where none is, the boundary between the
+/// maximum a posteriori shift and the nearest unconfirmed one (a bisection, four runs); then
+/// drawn back along its own ray to the smallest share of it that still leaves the start within
 /// `target_rms` (a bisection, six runs).
 StartStateShift FitStartStateShift(const RecordCost& cost, const Eigen::VectorXd& residual_before,
                                    int threads, double target_rms = 0.0);
