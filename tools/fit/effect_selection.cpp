@@ -393,7 +393,8 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
       if (!early_cost->measurement().trigger_state_from_record) return false;
       const RecordCost chosen_start(params, cost.measurement(), cost.record(), cost.run_options(),
                                     3000, CostScope::kEarly);
-      const StartStateShift shift = FitStartStateShift(chosen_start, start, rules.threads);
+      const StartStateShift shift =
+          FitStartStateShift(chosen_start, start, rules.threads, early.limit);
       return shift.fitted && shift.sigmas <= shift.plausible_sigmas &&
              shift.rms_after <= early.limit;
     };
