@@ -283,7 +283,6 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
   // to 0.00424. A TDB's larger clearance fits an offset TDB's drop start as well (0.000353
   // against 0.000348) but not the rest (0.00413, limit 0.00194): the offset stays.
   std::string simpler;
-  std::string displaced;  // the richer explanation the simpler one was named before
   if (order.size() > 1 && !at_floor) {
     const CandidateScore& top = singles[order.front()];
     std::size_t pick = 0;
@@ -302,7 +301,6 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
       simpler =
           fmt::format("; the simpler of the look-alikes is named first ({} has {} parameters)",
                       top.name, Parameters(top.fit));
-      displaced = top.name;
       std::rotate(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(pick),
                   order.begin() + static_cast<std::ptrdiff_t>(pick) + 1);
     }
@@ -432,16 +430,13 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
   const bool chosen_agree = !s.chosen.empty() && s.rms_after <= limit_after;
   std::string alike;
   if (!s.chosen.empty()) {
-    std::string family;
     for (const CandidateScore& c : singles) {
-      if (c.name == s.chosen.front()) family = c.family;
-    }
-    for (const CandidateScore& c : singles) {
-      // Another family's look-alikes; of the chosen effect's own family only the richer one it
-      // was named before (both numbers of a declared power loss off where one alone fits as
-      // well): per-item variants of one family are not alternatives to each other.
-      if (!c.tried || !std::isfinite(c.fit.sse) || (c.family == family && c.name != displaced) ||
-          c.name == set_aside ||
+      // Of any family, the chosen effect's own included: another item of it is an alternative
+      // where the record cannot tell them apart. On the rigid truth rig (its centre of mass
+      // midway between its AMBs) the DE AMB's station 14 mm off was named as the NDE AMB's, the
+      // two fitting every part of the record alike to five digits, and the truth went unlisted.
+      const bool chosen = std::find(s.chosen.begin(), s.chosen.end(), c.name) != s.chosen.end();
+      if (!c.tried || !std::isfinite(c.fit.sse) || chosen || c.name == set_aside ||
           std::find(breaking.begin(), breaking.end(), c.name) != breaking.end()) {
         continue;
       }
