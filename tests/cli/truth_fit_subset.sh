@@ -61,7 +61,13 @@
 #     left the hold 23 % of its change off);
 #   - the rigid rig's chain lag of seed 12 (a 0.33 ms low-pass and a 0.16 ms delay on every
 #     sensor, the controller reading through them): the lag shared by every sensor
-#     (`sensor_lag`, issue 15 item 5) named first, its delay and cut-off within 20 %.
+#     (`sensor_lag`, issue 15 item 5) named first, its delay and cut-off within 20 %;
+#   - two declared numbers off (`ambdrop_truth --battery-declared --first-seed 701`'s draws):
+#     the rigid rig's DE AMB 14 mm off its station, which the NDE AMB's station and the centre
+#     of mass fit exactly as well (the centre of mass midway between the AMBs), and the 4-DOF
+#     rig's NDE air gap 23.5 % wide, which its bias current and constant fit as well: the truth
+#     named or listed as equivalent, within 20 % of its change (it had gone unlisted: another
+#     item of the chosen key's family; a number of its table the screening misjudged).
 # Every record is fitted before the script fails, so one run shows every outcome.
 # Usage: truth_fit_subset.sh AMBDROP_BINARY SOURCE_DIR [AMBDROP_TRUTH_BINARY]
 #   (the truth binary defaults to tools/truth/ambdrop_truth beside the ambdrop binary's build
@@ -96,7 +102,8 @@ cases=("rigid_rotor_a clean 1" "rigid_rotor_a clearance_worn 4" "rigid_rotor_a s
   "rigid_fourdof_c side_pull 16" "rigid_fourdof_c clean 202" "rigid_rotor_a misalignment_friction 217"
   "rigid_rotor_a clean 218" "rigid_rotor_a static_unbalance 406"
   "rigid_rotor_a tdb_misalignment 203" "rigid_rotor_a race_inertia 215"
-  "rigid_fourdof_c flux_decay_b 409" "rigid_rotor_a chain_lag 12")
+  "rigid_fourdof_c flux_decay_b 409" "rigid_rotor_a chain_lag 12"
+  "rigid_rotor_a declared_off 701" "rigid_fourdof_c declared_off 707")
 for c in "${cases[@]}"; do
   read -r rig effect seed extra <<<"$c"
   run="${rig}_${effect}_$seed${extra:+_${extra//[^a-z0-9]/}}"
