@@ -18,7 +18,6 @@ namespace ambdrop_truth {
 
 namespace {
 
-constexpr int kMaxAttempts = 20;
 // The TDB must catch the rotor before the AMB's poles do: clearance <= 0.8 of the air gap.
 constexpr double kClearanceOverGapMax = 0.8;
 // Levitated: held without power loss for the trigger time and at least kLevitationHorizon_s,
@@ -424,7 +423,7 @@ Truth ApplyDeclaredOff(const std::string& entry_name, std::uint64_t seed, Rig* r
                                   "' (ambdrop_truth --list names them)");
     }
   }
-  for (int attempt = 0; attempt < kMaxAttempts; ++attempt) {
+  for (int attempt = 0; attempt < kMaxLevitationDraws; ++attempt) {
     Rig actual = *rig;
     const Truth t =
         ApplyDraw(entries, DrawDeclaredOff(*rig, entries, entry, seed, attempt), attempt, &actual);
@@ -434,7 +433,7 @@ Truth ApplyDeclaredOff(const std::string& entry_name, std::uint64_t seed, Rig* r
     return t;
   }
   throw std::runtime_error(
-      fmt::format("declared_off (seed {}): no draw in {} levitates", seed, kMaxAttempts));
+      fmt::format("declared_off (seed {}): no draw in {} levitates", seed, kMaxLevitationDraws));
 }
 
 }  // namespace ambdrop_truth

@@ -67,6 +67,9 @@ struct DeclaredOffDraw {
 DeclaredOffDraw DrawDeclaredOff(const Rig& declared, const std::vector<DeclaredEntry>& entries,
                                 int entry, std::uint64_t seed, int attempt);
 
+/// How many draws an effect gets before its generator gives up on a rig that levitates.
+inline constexpr int kMaxLevitationDraws = 20;
+
 /// Whether `rig`'s loop holds its rotor: levitated without power loss (the record's noise, seed
 /// `seed`) for its trigger time and at least 0.3 s, the run stays finite, the journal never
 /// comes within half a clearance of a TDB, and the rotor's motion at the sensors about its set

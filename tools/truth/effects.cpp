@@ -20,8 +20,6 @@ std::string Num(double v) {
 }
 
 /// Strengths and phases for one record: a stream of its own, apart from the noise's.
-constexpr int kMaxLevitationAttempts = 20;
-
 class Draw {
  public:
   explicit Draw(std::uint64_t seed) : noise_(seed, 1000) {}
@@ -231,17 +229,15 @@ Truth ApplyEffect(const std::string& kind, std::uint64_t seed, Rig* rig) {
     // The controller reads through the lag, so a long one can cost the loop its phase margin:
     // on the magnet-biased flexible rig 0.47 ms sent the rotor onto the poles before the
     // trigger (seed 212). Such a rig is not levitated: drawn again, as declared numbers are.
-    const Rig sheet = *rig;
     int attempt = 0;
     for (;; ++attempt) {
       q.lag_time_constant_s = d.Between(100e-6, 400e-6);
       q.lag_delay_s = d.Between(100e-6, 300e-6);
       if (Levitates(*rig, seed)) break;
-      if (attempt + 1 == kMaxLevitationAttempts) {
+      if (attempt + 1 == kMaxLevitationDraws) {
         throw std::runtime_error(fmt::format("chain_lag (seed {}): no lag in {} draws levitates",
-                                             seed, kMaxLevitationAttempts));
+                                             seed, kMaxLevitationDraws));
       }
-      *rig = sheet;
     }
     t.description = fmt::format(
         "the whole acquisition chain lags: a first-order low-pass of {:.3g} s then a delay of "
