@@ -621,6 +621,77 @@ TEST(FitVerdicts, FittedPairsAreReportedAsTried) {
   EXPECT_EQ(pairs, 2u);
 }
 
+// The agreement limit lets the drop's sensitivity to its start excuse what one effect leaves.
+// A second effect is still named where, beside the first, it takes that rest down to the noise
+// and removes more than the start's sensitivity could (twice the model floor, as in the limit):
+// the record held it. Here the start sensitivity's weight is raised until the better offset
+// alone falls within the limit (a drop more sensitive to its start than this one), first to
+// less than what the other offset removes, then to more: only the first names both. A partner
+// that does not take the rest to the noise (the magnets' fading, with the NDE offset out of the
+// library) is never named.
+TEST(FitVerdicts, ASecondEffectIsNamedWithinTheLimitWhereItLeavesOnlyTheNoise) {
+  std::vector<std::string> truth = Timing();
+  for (const char* o : {"simulation.step_s=2.5e-6", "tdb.de.misalignment.enabled=true",
+                        "tdb.de.misalignment.x_m=2e-5", "tdb.de.misalignment.y_m=-4e-5",
+                        "tdb.nde.misalignment.enabled=true", "tdb.nde.misalignment.x_m=-3e-5",
+                        "tdb.nde.misalignment.y_m=-3e-5"}) {
+    truth.push_back(o);
+  }
+  MeasureOptions noise;
+  noise.current_noise_A = 0.005;
+  const SyntheticMeasurement made = MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), noise);
+  const ConfigVariants variants = testing::LoadTestVariants(kRig, Timing());
+  const RecordCost cost(variants.declared().params, made.measurement, made.record,
+                        RecordRunOptions{});
+  std::vector<Effect> library;
+  for (const Effect& e : EffectLibrary(variants)) {
+    if (e.family == "tdb_misalignment" || e.name == "amb_flux_decay") library.push_back(e);
+  }
+  ASSERT_EQ(library.size(), 3u);
+  SelectionRules rules;
+  rules.threads = 2;
+  // With the declared weights: one offset alone is beyond the limit, both are named.
+  const Selection plain = SelectEffects(variants, cost, library, cost.NoiseFloor(), rules);
+  ASSERT_EQ(plain.chosen.size(), 2u) << plain.reason;
+  double single = std::numeric_limits<double>::infinity();
+  for (const CandidateScore& c : plain.candidates) {
+    if (c.tried && c.name.find(" + ") == std::string::npos) single = std::min(single, c.rms_after);
+  }
+  const double at_noise = rules.explained_over_floor * plain.noise_floor;
+  ASSERT_GT(single, at_noise) << "the better offset alone leaves no more than the noise";
+  ASSERT_LE(plain.rms_after, at_noise) << "both offsets leave more than the noise";
+  ASSERT_GT(plain.model_floor, 0.0);
+  // The start's allowance that puts `single` within the limit, and the most the pair removes.
+  const double within = std::sqrt(single * single - at_noise * at_noise);
+  const double removed = std::sqrt(single * single - plain.rms_after * plain.rms_after);
+  std::printf("noise %.4g, one offset %.4g, both %.4g: allowance from %.4g, removed %.4g\n",
+              plain.noise_floor, single, plain.rms_after, within, removed);
+  const auto chosen_with_allowance = [&](double allowance, const std::vector<Effect>& effects) {
+    SelectionRules r = rules;
+    r.model_floor_factor = allowance / plain.model_floor;
+    const Selection s = SelectEffects(variants, cost, effects, cost.NoiseFloor(), r);
+    EXPECT_GT(s.limit, single) << "the case: one offset alone falls within the limit";
+    return s;
+  };
+  const Selection held = chosen_with_allowance(0.5 * (within + removed), library);
+  ASSERT_EQ(held.chosen.size(), 2u) << held.reason;
+  const std::vector<std::vector<double>> want = {{2e-5, -4e-5}, {-3e-5, -3e-5}};
+  for (std::size_t e = 0; e < 2; ++e) {
+    const bool de = held.chosen[e] == "tdb_misalignment:de";
+    ASSERT_TRUE(de || held.chosen[e] == "tdb_misalignment:nde") << held.chosen[e];
+    for (std::size_t i = 0; i < 2; ++i) {
+      EXPECT_NEAR(held.chosen_fit.values[e][i], want[de ? 0 : 1][i], 3e-6) << held.chosen[e];
+    }
+  }
+  const Selection excused = chosen_with_allowance(1.2 * removed, library);
+  EXPECT_EQ(excused.chosen.size(), 1u) << excused.reason;
+  std::erase_if(library, [](const Effect& e) { return e.name == "tdb_misalignment:nde"; });
+  const Selection without = chosen_with_allowance(0.5 * (within + removed), library);
+  ASSERT_FALSE(without.chosen.empty()) << without.reason;
+  EXPECT_EQ(without.chosen.size(), 1u) << without.reason;
+  EXPECT_EQ(without.chosen.front(), "tdb_misalignment:de") << without.reason;
+}
+
 // Issue 23: a number the declared model has, and it is off, is a candidate without a hand-made
 // effect: the key registry offers every physical key, the screening finds the one that cuts.
 TEST(FitVerdicts, ADeclaredNumberThatIsOffIsNamedByItsKey) {
