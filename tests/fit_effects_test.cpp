@@ -586,9 +586,8 @@ TEST(FitSearch, ASizeAndPhaseIsFoundFromItsInfluenceCoefficients) {
   EXPECT_NEAR(std::remainder(fit.values[0][1] + 1.2, 2 * std::numbers::pi), 0.0, 0.1);
 }
 
-TEST(FitVerdicts, FittedPairsAreReportedAsTried) {
-  // Both TDBs offset: no single offset explains the record, so pairs are fitted. Each pair
-  // fitted must say so (fit.json's "tried", report.md's row), with the residual it reached.
+// Both TDBs offset, DE (20, -40) um and NDE (-30, -30) um, with current noise.
+SyntheticMeasurement BothTdbsOffsetRecord() {
   std::vector<std::string> truth = Timing();
   for (const char* o : {"simulation.step_s=2.5e-6", "tdb.de.misalignment.enabled=true",
                         "tdb.de.misalignment.x_m=2e-5", "tdb.de.misalignment.y_m=-4e-5",
@@ -598,14 +597,26 @@ TEST(FitVerdicts, FittedPairsAreReportedAsTried) {
   }
   MeasureOptions noise;
   noise.current_noise_A = 0.005;
-  const SyntheticMeasurement made = MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), noise);
-  const ConfigVariants variants = testing::LoadTestVariants(kRig, Timing());
-  const ModelParams& declared = variants.declared().params;
-  const RecordCost cost(declared, made.measurement, made.record, RecordRunOptions{});
+  return MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), noise);
+}
+
+// Each TDB's offset and the magnets' fading: the candidates of the two-offset records.
+std::vector<Effect> OffsetsAndFading(const ConfigVariants& variants) {
   std::vector<Effect> library;
   for (const Effect& e : EffectLibrary(variants)) {
     if (e.family == "tdb_misalignment" || e.name == "amb_flux_decay") library.push_back(e);
   }
+  return library;
+}
+
+TEST(FitVerdicts, FittedPairsAreReportedAsTried) {
+  // Both TDBs offset: no single offset explains the record, so pairs are fitted. Each pair
+  // fitted must say so (fit.json's "tried", report.md's row), with the residual it reached.
+  const SyntheticMeasurement made = BothTdbsOffsetRecord();
+  const ConfigVariants variants = testing::LoadTestVariants(kRig, Timing());
+  const ModelParams& declared = variants.declared().params;
+  const RecordCost cost(declared, made.measurement, made.record, RecordRunOptions{});
+  std::vector<Effect> library = OffsetsAndFading(variants);
   ASSERT_EQ(library.size(), 3u);
   SelectionRules rules;
   rules.threads = 2;
@@ -630,23 +641,11 @@ TEST(FitVerdicts, FittedPairsAreReportedAsTried) {
 // that does not take the rest to the noise (the magnets' fading, with the NDE offset out of the
 // library) is never named.
 TEST(FitVerdicts, ASecondEffectIsNamedWithinTheLimitWhereItLeavesOnlyTheNoise) {
-  std::vector<std::string> truth = Timing();
-  for (const char* o : {"simulation.step_s=2.5e-6", "tdb.de.misalignment.enabled=true",
-                        "tdb.de.misalignment.x_m=2e-5", "tdb.de.misalignment.y_m=-4e-5",
-                        "tdb.nde.misalignment.enabled=true", "tdb.nde.misalignment.x_m=-3e-5",
-                        "tdb.nde.misalignment.y_m=-3e-5"}) {
-    truth.push_back(o);
-  }
-  MeasureOptions noise;
-  noise.current_noise_A = 0.005;
-  const SyntheticMeasurement made = MakeMeasuredRecord(testing::LoadTestConfig(kRig, truth), noise);
+  const SyntheticMeasurement made = BothTdbsOffsetRecord();
   const ConfigVariants variants = testing::LoadTestVariants(kRig, Timing());
   const RecordCost cost(variants.declared().params, made.measurement, made.record,
                         RecordRunOptions{});
-  std::vector<Effect> library;
-  for (const Effect& e : EffectLibrary(variants)) {
-    if (e.family == "tdb_misalignment" || e.name == "amb_flux_decay") library.push_back(e);
-  }
+  std::vector<Effect> library = OffsetsAndFading(variants);
   ASSERT_EQ(library.size(), 3u);
   SelectionRules rules;
   rules.threads = 2;
