@@ -12,7 +12,8 @@
 #   - a clean record of another seed (11) whose drop goes into backward whirl where the
 #     declared model's noise-free drop rocks gives `no_effect_needed`, nothing chosen, with a
 #     run of the declared model whose rotor jitters at the trigger in the record's mode or
-#     within the limit (fit.json `jitter_draws`): effects that flip the model's mode cut its
+#     within the limit (fit.json `jitter_draws`), and no candidate fitted (on every record the
+#     draws come first where a later part departs): effects that flip the model's mode cut its
 #     speeds 6x; fitted again with no jitter drawn (--jitter-draws=0), the same departure after
 #     an agreeing start is either taken only by models too chaotic to confirm (`no_effect_needed`
 #     with fit.json `unconfirmed_departure` and those effects as `closest`) or named by a model
@@ -228,6 +229,11 @@ for case in sys.argv[4:]:
             draw and (draw["first_within_limit"] > 0 or (
                 draw["first_in_record_mode"] > 0 and "backward_whirl" in draw["record_mode"]))):
         problems.append(f"no run of the declared model in the record's whirl: {draw}")
+    if draw and (draw["first_within_limit"] > 0 or draw["first_in_record_mode"] > 0) and \
+            any(c.get("tried") for c in fit.get("candidates", [])):
+        # The draws come before the candidates where a later part departs: once one took the
+        # departure, no fit could change the verdict.
+        problems.append("candidates fitted although a draw of the jitter took the departure")
     cut = "inf" if row["cut"] == float("inf") else f"{row['cut']:.2g}x"
     print(f"{rig:<15} {' '.join([effect, seed] + extra):<24} {fit['verdict']:<17} on {fit.get('judged_on', '?'):<6} "
           f"chosen {row['chosen']:<28} "

@@ -57,8 +57,10 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
 void TakeNoEffect(Selection* s);
 std::string NoDrawAgreed(const JitterDraws& j, const char* which, const char* where);
 /// Where the declared model agrees with the drop's start and a later part is judged.
+/// `drawn`, if given: the draws already made on `judged` at s->limit.
 void TakeJitterDraws(const RecordCost& cost, const RecordCost& judged, const std::string& on,
-                     const Selection::Part& early, const SelectionRules& rules, Selection* s);
+                     const Selection::Part& early, const SelectionRules& rules, Selection* s,
+                     const JitterDraws* drawn = nullptr);
 /// Where that start agrees and the partial explanation's model is chaotic.
 void SetAsideChaoticExplanation(const Selection::Part& early, Selection* s);
 /// Where the start judges and the state at the trigger is an estimate.

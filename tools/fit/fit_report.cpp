@@ -497,7 +497,18 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
   // table, not a row each.
   std::vector<const CandidateScore*> screened_only;
   std::size_t screened_undecidable = 0;
+  // A draw of the rotor's jitter that took the departure after an agreeing start came first,
+  // and nothing was fitted (SelectEffects).
+  const bool drawn_first = s.jitter.ran &&
+                           (s.jitter.first_within > 0 || s.jitter.first_match > 0) &&
+                           std::none_of(s.candidates.begin(), s.candidates.end(),
+                                        [](const CandidateScore& c) { return c.tried; });
+  std::size_t unscreened = 0;
   for (const CandidateScore& c : s.candidates) {
+    if (drawn_first && c.screened) {
+      ++unscreened;
+      continue;
+    }
     if (c.screened && !c.tried) {
       if (c.decidable && std::isfinite(c.screened_rms)) {
         screened_only.push_back(&c);
@@ -523,9 +534,11 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
       continue;
     }
     if (!c.tried) {
-      md +=
-          fmt::format("| {} | {} | not fitted: the declared model agrees within the limit | | |\n",
-                      c.name, Suggested(o.before, c.family) ? "yes" : "");
+      md += fmt::format("| {} | {} | not fitted: {} | | |\n", c.name,
+                        Suggested(o.before, c.family) ? "yes" : "",
+                        drawn_first ? "a run of the declared model with the jitter drawn "
+                                      "agreed first"
+                                    : "the declared model agrees within the limit");
       continue;
     }
     md += fmt::format("| {} | {} | {:.4g} | {:.1f} | {} |\n", c.name,
@@ -547,6 +560,12 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
                         screened_only[i]->screened_rms);
     }
     md += screened_only.size() > 8 ? ", ...\n" : "\n";
+  }
+  if (unscreened > 0) {
+    md += fmt::format(
+        "\n{} more candidates, \"the declared value is off\" for the config's other physical "
+        "keys, were neither screened nor fitted.\n",
+        unscreened);
   }
   md += "\n## Plots\n\n";
   for (const std::string& p : plots) md += fmt::format("![{}]({})\n\n", p, p);

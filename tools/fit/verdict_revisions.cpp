@@ -59,8 +59,11 @@ std::string NoDrawAgreed(const JitterDraws& j, const char* which, const char* wh
 // rig's clean records).
 // Not where the levitated time judges: the jitter at the trigger moves nothing before it.
 void TakeJitterDraws(const RecordCost& cost, const RecordCost& judged, const std::string& on,
-                     const Selection::Part& early, const SelectionRules& rules, Selection* s) {
-  s->jitter = DrawJitter(cost, judged, s->limit, rules.jitter_draws, rules.threads);
+                     const Selection::Part& early, const SelectionRules& rules, Selection* s,
+                     const JitterDraws* drawn) {
+  s->jitter = drawn != nullptr
+                  ? *drawn
+                  : DrawJitter(cost, judged, s->limit, rules.jitter_draws, rules.threads);
   const JitterDraws& j = s->jitter;
   const bool within = j.first_within > 0;
   if (within || j.first_match > 0) {
