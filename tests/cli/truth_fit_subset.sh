@@ -74,7 +74,12 @@
 #     above the noise, and the NDE offset beside it takes it to the noise: the pair named, both
 #     within 20 % (the offset had gone unnamed); its offset DE TDB of seed 603, whose start's
 #     cost is rough along y: the offset alone, refitted from where a pair put it, within 20 %
-#     (its y had stopped 38 % of its change off).
+#     (its y had stopped 38 % of its change off);
+#   - one of `--first-seed 801`'s draws (drawn after the rules above were made): the rigid rig's
+#     clean seed 802, whose NDE journal whirls backward where the declared model rocks in every
+#     run with its jitter drawn; both journal radii 6 % large took the speeds just within their
+#     limit with a model that rocks too: `unexplained`, nothing chosen, the radii as `closest`
+#     (they had been named, partly explaining a clean record).
 # Every record is fitted before the script fails, so one run shows every outcome.
 # Usage: truth_fit_subset.sh AMBDROP_BINARY SOURCE_DIR [AMBDROP_TRUTH_BINARY]
 #   (the truth binary defaults to tools/truth/ambdrop_truth beside the ambdrop binary's build
@@ -111,7 +116,8 @@ cases=("rigid_rotor_a clean 1" "rigid_rotor_a clearance_worn 4" "rigid_rotor_a s
   "rigid_rotor_a tdb_misalignment 203" "rigid_rotor_a race_inertia 215"
   "rigid_fourdof_c flux_decay_b 409" "rigid_rotor_a chain_lag 12"
   "rigid_rotor_a declared_off 701" "rigid_fourdof_c declared_off 707"
-  "rigid_rotor_a misalignment_friction 617" "rigid_rotor_a tdb_misalignment 603")
+  "rigid_rotor_a misalignment_friction 617" "rigid_rotor_a tdb_misalignment 603"
+  "rigid_rotor_a clean 802")
 for c in "${cases[@]}"; do
   read -r rig effect seed extra <<<"$c"
   run="${rig}_${effect}_$seed${extra:+_${extra//[^a-z0-9]/}}"
@@ -154,6 +160,13 @@ for case in sys.argv[4:]:
     row = battery.score(effect, truth, fit, declared[rig])
     jitterless = extra == ["--jitter-draws=0"]
     verdict = None if jitterless else expect.get(effect)
+    if (rig, effect, seed) == ("rigid_rotor_a", "clean", "802"):
+        # The record's NDE journal whirls backward where no run of the declared model does: the
+        # effect that cut the speeds left its model rocking, so nothing is named, and the
+        # departure is said to be outside the library.
+        verdict = "unexplained"
+        if "drop the record does not show" not in fit["reason"] or not fit.get("closest"):
+            problems.append("the effect out of the record's mode not set aside as closest")
     problems = []
     if verdict is not None and fit["verdict"] != verdict:
         problems.append(f"verdict {fit['verdict']}, expected {verdict}")

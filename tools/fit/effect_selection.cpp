@@ -524,6 +524,9 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   if (start_agrees && !before_trigger && s.verdict != "no_effect_needed" &&
       rules.jitter_draws > 0) {
     TakeJitterDraws(cost, judged, on, early, rules, &s, drawn ? &*drawn : nullptr);
+    if (s.verdict == "partly_explained" && !s.chosen.empty() && s.jitter.mode_differs) {
+      SetAsideEffectOutsideTheRecordsMode(declared, cost, judged, library, rules, on, &s);
+    }
   }
   if (start_agrees && !before_trigger && s.verdict == "partly_explained" &&
       s.model_floor_after > rules.confirmable_chaos * s.limit) {

@@ -61,6 +61,13 @@ std::string NoDrawAgreed(const JitterDraws& j, const char* which, const char* wh
 void TakeJitterDraws(const RecordCost& cost, const RecordCost& judged, const std::string& on,
                      const Selection::Part& early, const SelectionRules& rules, Selection* s,
                      const JitterDraws* drawn = nullptr);
+/// Where the declared model's draws (s->jitter) never reached the record's drop mode: an effect
+/// chosen after the start whose model does not reach it either is set aside (`unexplained`).
+void SetAsideEffectOutsideTheRecordsMode(const ConfigVariants& declared, const RecordCost& cost,
+                                         const RecordCost& judged,
+                                         const std::vector<Effect>& library,
+                                         const SelectionRules& rules, const std::string& on,
+                                         Selection* s);
 /// Where that start agrees and the partial explanation's model is chaotic.
 void SetAsideChaoticExplanation(const Selection::Part& early, Selection* s);
 /// Where the start judges and the state at the trigger is an estimate.

@@ -196,4 +196,51 @@ void SayWhatTellsLookAlikesApart(const ConfigVariants& declared, const RecordCos
   }
 }
 
+// Where the record's drop went into a mode (rocking, backward whirl) that the declared model
+// reaches neither noise-free nor in any run with the rotor's jitter drawn, what departs after
+// the start is that mode: the speeds of a whirling rotor's races are not a rocking one's. An
+// effect that cuts them while its own model stays out of that mode buys its cut with the wrong
+// drop, and is not the record's explanation. On the independent rigid rig's clean record of
+// seed 802 the record's NDE journal whirled backward where the declared model rocked (none of 64
+// draws whirled); both journal radii at 31.8 mm (30 declared) took the speeds from 0.0291 to
+// 0.0204 (limit 0.0204), and no run of that model whirled either.
+void SetAsideEffectOutsideTheRecordsMode(const ConfigVariants& declared, const RecordCost& cost,
+                                         const RecordCost& judged,
+                                         const std::vector<Effect>& library,
+                                         const SelectionRules& rules, const std::string& on,
+                                         Selection* s) {
+  const ModelParams params = FittedParams(declared, library, s->chosen_fit);
+  const RecordCost chosen_cost(params, cost.measurement(), cost.record(), cost.run_options());
+  const JitterDraws j =
+      DrawJitter(chosen_cost, judged, s->limit_after, FittedJitterDraws(rules), rules.threads);
+  if (!j.ran || !j.mode_differs || j.first_match > 0) return;
+  std::string best;
+  for (const std::string& name : s->chosen) best += (best.empty() ? "" : " + ") + name;
+  s->reason = fmt::format(
+      "the declared model agrees with the drop's start and departs after it {} ({:.3g}, limit "
+      "{:.3g}), where the record's drop is {} and the declared model's is {} in its noise-free "
+      "run and in each of {} runs with the rotor's jitter drawn; {} took that to {:.3g}, but its "
+      "model's drop stays {} (noise-free, and in each of {} runs with the jitter drawn): it cuts "
+      "the residual with a drop the record does not show, and no effect of the library makes "
+      "the record's",
+      on == "speeds" ? "on the speeds" : "over the whole record", s->rms_before, s->limit,
+      s->jitter.record_mode, s->jitter.model_mode, s->jitter.draws, best, s->rms_after,
+      j.model_mode, j.draws);
+  s->verdict = "unexplained";
+  s->closest = s->chosen;
+  s->closest_rms = s->rms_after;
+  s->chosen.clear();
+  s->chosen_fit = EffectFit{};
+  s->equivalent.clear();
+  s->rms_after = s->rms_before;
+  s->limit_after = s->limit;
+  s->limit_after_capped = false;
+  s->model_floor_after = 0.0;
+  for (CandidateScore& c : s->candidates) c.accepted = false;
+  for (Selection::Part* p : {&s->whole, &s->early, &s->speeds, &s->levitated}) {
+    p->rms_after = p->rms_before;
+    p->limit_after = p->limit;
+  }
+}
+
 }  // namespace ambdrop
