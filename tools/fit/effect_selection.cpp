@@ -369,11 +369,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
     if (drawn->first_within > 0 || drawn->first_match > 0) {
       // Listed, none fitted: the report says what was not tried.
       for (const Effect& e : library) {
-        CandidateScore c;
-        c.name = e.name;
-        c.family = e.family;
-        c.description = e.description;
-        c.decidable = Decidable(e, cost.measurement());
+        CandidateScore c = ListedCandidate(e, cost.measurement());
         c.screened = e.screened;
         first.candidates.push_back(std::move(c));
       }

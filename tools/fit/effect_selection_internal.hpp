@@ -43,6 +43,9 @@ Selection::Part JudgePart(const ConfigVariants& declared, const RecordCost& cost
 double ChaosAllowance(const RecordCost& part_cost, const Selection::Part& part);
 
 // judged_part_selection.cpp
+/// `e` as a candidate not yet screened or fitted: its names, and whether these channels could
+/// reveal it (Decidable).
+CandidateScore ListedCandidate(const Effect& e, const MeasurementParams& measurement);
 double Bic(double sse, std::size_t n, std::size_t k);
 std::size_t Parameters(const EffectFit& f);
 Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const RecordCost* search,

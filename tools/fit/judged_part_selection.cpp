@@ -104,6 +104,15 @@ void ProfilePair(const ConfigVariants& declared, const RecordCost& cost, const R
 
 }  // namespace
 
+CandidateScore ListedCandidate(const Effect& e, const MeasurementParams& measurement) {
+  CandidateScore c;
+  c.name = e.name;
+  c.family = e.family;
+  c.description = e.description;
+  c.decidable = Decidable(e, measurement);
+  return c;
+}
+
 // The selection on one cost (the part the verdict judges): `s` comes with that part's numbers
 // (rms_before, noise and model floors, limit); `search` is where starts are searched first.
 // `harm`, if given, says why a fitted pair makes a part of the record not judged here depart
@@ -147,10 +156,7 @@ Selection SelectOn(const ConfigVariants& declared, const RecordCost& cost, const
   ParallelFor(library.size(), rules.threads, [&](std::size_t i) {
     const Effect& e = library[i];
     CandidateScore& c = singles[i];
-    c.name = e.name;
-    c.family = e.family;
-    c.description = e.description;
-    c.decidable = Decidable(e, cost.measurement());
+    c = ListedCandidate(e, cost.measurement());
     if (!c.decidable) return;
     c.refused = RefusedAtStart(declared, e);
     if (!c.refused.empty()) {

@@ -20,8 +20,10 @@ namespace ambdrop {
 
 // The verdict no_effect_needed after effects were chosen: the declared model stands, nothing
 // chosen or accepted, every part's residual after as before.
-void TakeNoEffect(Selection* s) {
-  s->verdict = "no_effect_needed";
+namespace {
+
+// Nothing chosen or accepted any more: every part's residual after as before.
+void DropTheChoice(Selection* s) {
   s->chosen.clear();
   s->chosen_fit = EffectFit{};
   s->equivalent.clear();
@@ -34,6 +36,13 @@ void TakeNoEffect(Selection* s) {
     p->rms_after = p->rms_before;
     p->limit_after = p->limit;
   }
+}
+
+}  // namespace
+
+void TakeNoEffect(Selection* s) {
+  s->verdict = "no_effect_needed";
+  DropTheChoice(s);
 }
 
 // "; none of N runs of the <which> model with the rotor's jitter drawn agreed ...": why no
@@ -214,8 +223,6 @@ void SetAsideEffectOutsideTheRecordsMode(const ConfigVariants& declared, const R
   const JitterDraws j =
       DrawJitter(chosen_cost, judged, s->limit_after, FittedJitterDraws(rules), rules.threads);
   if (!j.ran || !j.mode_differs || j.first_match > 0) return;
-  std::string best;
-  for (const std::string& name : s->chosen) best += (best.empty() ? "" : " + ") + name;
   s->reason = fmt::format(
       "the declared model agrees with the drop's start and departs after it {} ({:.3g}, limit "
       "{:.3g}), where the record's drop is {} and the declared model's is {} in its noise-free "
@@ -224,23 +231,12 @@ void SetAsideEffectOutsideTheRecordsMode(const ConfigVariants& declared, const R
       "the residual with a drop the record does not show, and no effect of the library makes "
       "the record's",
       on == "speeds" ? "on the speeds" : "over the whole record", s->rms_before, s->limit,
-      s->jitter.record_mode, s->jitter.model_mode, s->jitter.draws, best, s->rms_after,
-      j.model_mode, j.draws);
+      s->jitter.record_mode, s->jitter.model_mode, s->jitter.draws, fmt::join(s->chosen, " + "),
+      s->rms_after, j.model_mode, j.draws);
   s->verdict = "unexplained";
   s->closest = s->chosen;
   s->closest_rms = s->rms_after;
-  s->chosen.clear();
-  s->chosen_fit = EffectFit{};
-  s->equivalent.clear();
-  s->rms_after = s->rms_before;
-  s->limit_after = s->limit;
-  s->limit_after_capped = false;
-  s->model_floor_after = 0.0;
-  for (CandidateScore& c : s->candidates) c.accepted = false;
-  for (Selection::Part* p : {&s->whole, &s->early, &s->speeds, &s->levitated}) {
-    p->rms_after = p->rms_before;
-    p->limit_after = p->limit;
-  }
+  DropTheChoice(s);
 }
 
 }  // namespace ambdrop
