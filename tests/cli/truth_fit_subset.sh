@@ -79,7 +79,12 @@
 #     clean seed 802, whose NDE journal whirls backward where the declared model rocks in every
 #     run with its jitter drawn; both journal radii 6 % large took the speeds just within their
 #     limit with a model that rocks too: `unexplained`, nothing chosen, the radii as `closest`
-#     (they had been named, partly explaining a clean record).
+#     (they had been named, partly explaining a clean record);
+#   - the 4-DOF rig's offset-and-friction seed 617 (`--first-seed 601`), where the NDE offset
+#     fits the start best but alone moves the speeds a little beyond what is allowed, and an
+#     NDE clearance was named with the DE friction 42 % off: each look-alike given its partner
+#     on the speeds, the offset and friction pair named, `explained`, the offset's y and the
+#     friction within 20 % (its x, 6.3 um beside 57.5, the start leaves open in sign).
 # Every record is fitted before the script fails, so one run shows every outcome.
 # Usage: truth_fit_subset.sh AMBDROP_BINARY SOURCE_DIR [AMBDROP_TRUTH_BINARY]
 #   (the truth binary defaults to tools/truth/ambdrop_truth beside the ambdrop binary's build
@@ -117,7 +122,7 @@ cases=("rigid_rotor_a clean 1" "rigid_rotor_a clearance_worn 4" "rigid_rotor_a s
   "rigid_fourdof_c flux_decay_b 409" "rigid_rotor_a chain_lag 12"
   "rigid_rotor_a declared_off 701" "rigid_fourdof_c declared_off 707"
   "rigid_rotor_a misalignment_friction 617" "rigid_rotor_a tdb_misalignment 603"
-  "rigid_rotor_a clean 802")
+  "rigid_rotor_a clean 802" "rigid_fourdof_c misalignment_friction 617")
 for c in "${cases[@]}"; do
   read -r rig effect seed extra <<<"$c"
   run="${rig}_${effect}_$seed${extra:+_${extra//[^a-z0-9]/}}"
@@ -160,6 +165,7 @@ for case in sys.argv[4:]:
     row = battery.score(effect, truth, fit, declared[rig])
     jitterless = extra == ["--jitter-draws=0"]
     verdict = None if jitterless else expect.get(effect)
+    problems = []
     if (rig, effect, seed) == ("rigid_rotor_a", "clean", "802"):
         # The record's NDE journal whirls backward where no run of the declared model does: the
         # effect that cut the speeds left its model rocking, so nothing is named, and the
@@ -167,17 +173,22 @@ for case in sys.argv[4:]:
         verdict = "unexplained"
         if "drop the record does not show" not in fit["reason"] or not fit.get("closest"):
             problems.append("the effect out of the record's mode not set aside as closest")
-    problems = []
     if verdict is not None and fit["verdict"] != verdict:
         problems.append(f"verdict {fit['verdict']}, expected {verdict}")
     if verdict is not None and fit["chosen"]:
         problems.append("chose " + row["chosen"] + " (expected nothing)")
     if effect == "static_unbalance" and fit.get("judged_on") != "levitated":
         problems.append(f"judged on {fit.get('judged_on')}, expected the levitated time")
-    if (rig, effect, seed) == ("rigid_rotor_a", "misalignment_friction", "217"):
+    pair_values = {
         # The pair and its values, the small y offset held to 30 % of its change.
-        want = {"tdb.nde.misalignment.x_m": 0.2, "tdb.nde.misalignment.y_m": 0.3,
-                "tdb.nde.friction.coefficient": 0.2}
+        ("rigid_rotor_a", "217"): {"tdb.nde.misalignment.x_m": 0.2,
+                                   "tdb.nde.misalignment.y_m": 0.3,
+                                   "tdb.nde.friction.coefficient": 0.2},
+        # The offset's y and the friction; its x (6.3 um of 57.8) the start leaves open in sign.
+        ("rigid_fourdof_c", "617"): {"tdb.nde.misalignment.y_m": 0.2,
+                                     "tdb.de.friction.coefficient": 0.2}}
+    if effect == "misalignment_friction" and (rig, seed) in pair_values:
+        want = pair_values[(rig, seed)]
         got = dict(line.split("=", 1) for c in fit["chosen"] for line in c.get("set", []))
         sets = dict(line.split("=", 1) for line in truth["ambdrop_set"])
         for key, tol in want.items():

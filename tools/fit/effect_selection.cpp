@@ -511,7 +511,8 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
       if (j.ran) {
         s.reason += NoDrawAgreed(j, "fitted", " on the speeds");
       }
-      AddSpeedsPartner(declared, cost, judged, *speeds_cost, library, rules, others, on, &s);
+      AddSpeedsPartnerWithLookAlikes(declared, cost, judged, *speeds_cost, library, rules, others,
+                                     on, &s);
     }
   }
   // The revisions of the verdict (verdict_revisions.cpp says why each). The jitter and chaos

@@ -87,4 +87,12 @@ void AddSpeedsPartner(const ConfigVariants& declared, const RecordCost& whole,
                       const std::vector<PartView>& others, const std::string& judged_name,
                       Selection* s);
 
+// look_alike_partners.cpp: AddSpeedsPartner for the chosen effect and for its closest
+// look-alikes on the judged part, keeping the pair that agrees better with the record.
+void AddSpeedsPartnerWithLookAlikes(const ConfigVariants& declared, const RecordCost& whole,
+                                    const RecordCost& judged, const RecordCost& speeds,
+                                    const std::vector<Effect>& library, const SelectionRules& rules,
+                                    const std::vector<PartView>& others,
+                                    const std::string& judged_name, Selection* s);
+
 }  // namespace ambdrop
