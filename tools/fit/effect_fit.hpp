@@ -2,6 +2,7 @@
 // Step d of `ambdrop fit`: the parameters of one effect (or two together) that bring the model
 // closest to the record, by Eigen's Levenberg-Marquardt on the record's residual vector, from
 // several starts (contact makes the cost bumpy and phases have several minima).
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct ParameterEstimate {
   /// residual variance; NaN at a bound or where the record does not determine it. Residual
   /// samples are correlated in time, so it is a lower bound.
   double sigma = 0.0;
+  /// The part of `sigma` the rotor's jitter at the trigger gives (AddStartJitterToSigmas,
+  /// start_jitter_sigma.hpp); NaN where it was not measured.
+  double start_sigma = std::numeric_limits<double>::quiet_NaN();
   /// The search stopped on one of the parameter's bounds.
   bool at_bound = false;
   /// False where the record leaves the value open (ParameterDecided): the model still runs

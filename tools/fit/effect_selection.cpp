@@ -13,6 +13,8 @@
 #include "tools/fit/effect_fit.hpp"
 #include "tools/fit/effect_selection_internal.hpp"
 #include "tools/fit/jitter_draws.hpp"
+#include "tools/fit/start_jitter_sigma.hpp"
+#include "tools/fit/start_sensitivity.hpp"
 #include "tools/fit/start_state_shift.hpp"
 
 namespace ambdrop {
@@ -532,6 +534,14 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   if (on == "early" && early_cost && s.verdict != "no_effect_needed" &&
       early_cost->measurement().trigger_state_from_record) {
     TakeStartStateShift(*early_cost, early_before, early, rules, &s);
+  }
+  // The chosen values' share of the rotor's jitter at the trigger, where the part they were
+  // judged on follows from it smoothly: the drop's start and the speeds (the whole record's
+  // chaotic rest would make a slope meaningless; the levitated time comes before it).
+  if (!s.chosen.empty() && (on == "early" || on == "speeds")) {
+    AddStartJitterToSigmas(declared, judged, library,
+                           std::min(kStartJitterDraws, rules.jitter_draws), rules.threads,
+                           &s.chosen_fit);
   }
   if (!s.chosen.empty() && !s.equivalent.empty()) {
     SayWhatTellsLookAlikesApart(declared, cost, library, &s);

@@ -68,6 +68,7 @@ void Parameters(JsonWriter& json, const EffectFit& fit, const std::string& effec
     json.Key(p.name).BeginObject(true);
     json.Key("value").Number(p.value);
     json.Key("sigma").Number(p.sigma);
+    if (std::isfinite(p.start_sigma)) json.Key("start_sigma").Number(p.start_sigma);
     json.Key("decided").Bool(p.decided);
     json.EndObject();
   }
@@ -416,10 +417,14 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
       md += fmt::format("- **{}**: {}\n", o.chosen[e]->name, o.chosen[e]->description);
       for (const ParameterEstimate& p : s.chosen_fit.parameters) {
         if (p.effect == o.chosen[e]->name) {
-          md += fmt::format("  - {} = {:.6g} ± {:.2g}{}\n", p.name, p.value, p.sigma,
-                            p.decided ? ""
-                                      : " (not decided: the record leaves it open; the model "
-                                        "runs with it, but it measures nothing)");
+          md += fmt::format(
+              "  - {} = {:.6g} ± {:.2g}{}{}\n", p.name, p.value, p.sigma,
+              std::isfinite(p.start_sigma) && std::isfinite(p.sigma)
+                  ? fmt::format(" (the rotor's jitter at the trigger {:.2g} of it)", p.start_sigma)
+                  : "",
+              p.decided ? ""
+                        : " (not decided: the record leaves it open; the model runs with it, "
+                          "but it measures nothing)");
         }
       }
       // Exactly what was applied: the --set lines of the declared config.
