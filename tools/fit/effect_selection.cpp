@@ -43,6 +43,10 @@ Selection::Part& PartNamed(Selection& s, const std::string& name) {
                                : s.whole;
 }
 
+const Selection::Part& PartNamed(const Selection& s, const std::string& name) {
+  return PartNamed(const_cast<Selection&>(s), name);
+}
+
 const char* PartPhrase(const std::string& name) {
   return name == "early"       ? "over the drop's start"
          : name == "speeds"    ? "on the speeds"

@@ -32,6 +32,7 @@ ModelParams FittedParams(const ConfigVariants& declared, const std::vector<Effec
 /// The part of `s` named "whole", "early", "speeds" or "levitated" (Selection::judged_on), and
 /// how a reason says where it is.
 Selection::Part& PartNamed(Selection& s, const std::string& name);
+const Selection::Part& PartNamed(const Selection& s, const std::string& name);
 const char* PartPhrase(const std::string& name);
 
 // agreement_limit.cpp

@@ -1,4 +1,5 @@
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -30,16 +31,9 @@ double PartsOverLimits(const ConfigVariants& declared, const RecordCost& whole,
     const double limit = std::max(part.limit, part.limit_after);
     return std::pow(OverallRms(cost, cost.Residual(sim).squaredNorm()) / limit, 2);
   };
-  Selection view = base;
-  double sum = over(judged, PartNamed(view, judged_name)) + over(speeds, base.speeds);
+  double sum = over(judged, PartNamed(base, judged_name)) + over(speeds, base.speeds);
   if (judged_name != "whole") sum += over(whole, base.whole);
   return sum;
-}
-
-std::string Joined(const std::vector<std::string>& names) {
-  std::string text;
-  for (const std::string& n : names) text += (text.empty() ? "" : " + ") + n;
-  return text;
 }
 
 }  // namespace
@@ -63,8 +57,7 @@ void AddSpeedsPartnerWithLookAlikes(const ConfigVariants& declared, const Record
   if (base.chosen.size() != 1) return;
   const std::vector<const Effect*> first = EffectsOf(base.chosen_fit, library);
   if (first.size() != 1) return;
-  Selection view = base;
-  const Selection::Part& judged_part = PartNamed(view, judged_name);
+  const Selection::Part& judged_part = PartNamed(base, judged_name);
   const double judged_limit = std::max(judged_part.limit, base.limit_after);
   std::vector<const CandidateScore*> alikes;
   for (const CandidateScore& c : base.candidates) {
@@ -129,8 +122,8 @@ void AddSpeedsPartnerWithLookAlikes(const ConfigVariants& declared, const Record
       "; {} and {} fitted the judged part alike, and each was given its partner on the "
       "speeds: {} agrees better with the record than {} (the judged part's, the speeds' and "
       "the whole record's squared residuals in units of their limits: {:.3g} against {:.3g})",
-      best_alike->name, base.chosen.front(), Joined(best.chosen), Joined(s->chosen), best_score,
-      kept_score);
+      best_alike->name, base.chosen.front(), fmt::join(best.chosen, " + "),
+      fmt::join(s->chosen, " + "), best_score, kept_score);
   *s = std::move(best);
 }
 

@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 
 #include "tools/fit/effect_selection.hpp"
+#include "tools/fit/effect_selection_internal.hpp"
 #include "tools/fit/parallel_for.hpp"
 #include "tools/fit/simulate_on_record.hpp"
 #include "tools/fit/start_sensitivity.hpp"
@@ -39,13 +40,8 @@ void AddStartJitterToSigmas(const ConfigVariants& declared, const RecordCost& co
   if (!ClosedLoop(cost.declared(), m, cost.run_options())) return;
   const double jitter_sigma_m = DisplacementNoiseMedian(cost);
   if (!(jitter_sigma_m > 0.0)) return;
-  std::vector<const Effect*> effects;
-  for (const std::string& name : fit->effects) {
-    const auto it = std::find_if(library.begin(), library.end(),
-                                 [&](const Effect& e) { return e.name == name; });
-    if (it == library.end()) return;
-    effects.push_back(&*it);
-  }
+  const std::vector<const Effect*> effects = EffectsOf(*fit, library);
+  if (effects.size() != fit->effects.size()) return;
   // The parameters in fit->parameters' order (effect by effect), those a small change moves.
   struct Column {
     std::size_t effect, index, flat;
