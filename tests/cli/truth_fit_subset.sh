@@ -28,12 +28,12 @@
 #     the true friction's start beyond its noise: 2.24x);
 #   - on the 4-DOF rig (tests/truth/rigid_fourdof_c.toml: moving races, Hertzian contacts, a
 #     declared hold-then-fall power loss): its clean record, an exponential power loss where
-#     the hold is declared (the law switched, its time constant within 20 % of the change) and
-#     an offset NDE TDB with the DE TDB's friction high (the friction shows on the speeds only:
-#     the pair is named, both values within 20 %; not the 3x cut, which this record's truth
-#     itself does not reach: its own --set lines cut the start 2.85x, `battery.py --ceiling`),
+#     the hold is declared (the law switched, its time constant within 20 % of the change),
 #     and a side pull there too, which the magnets' fading law takes most of the way on the
-#     drop's start while the speeds refute it: `unexplained`, nothing chosen;
+#     drop's start while the speeds refute it: `unexplained`, nothing chosen (its offset-and-
+#     friction record of seed 17, where the friction shows on the speeds only, was held here
+#     until session 40: seed 617 below holds the same pair harder, and CI's 30 minutes needed
+#     its 48 s);
 #   - two records of other draws (`ambdrop_truth --battery --first-seed 201`): the 4-DOF rig's
 #     clean seed 202, whose rotor started 0.4 mm/s off the model's rest and whose start departs
 #     beyond a limit that a synchronous orbit shift sets (the start's jitter draws span it):
@@ -84,7 +84,8 @@
 #     fits the start best but alone moves the speeds a little beyond what is allowed, and an
 #     NDE clearance was named with the DE friction 42 % off: each look-alike given its partner
 #     on the speeds, the offset and friction pair named, `explained`, the offset's y and the
-#     friction within 20 % (its x, 6.3 um beside 57.5, the start leaves open in sign).
+#     friction within 20 % (its x, 6.3 um beside 57.5, the start leaves open in sign; not the
+#     3x cut, which this record's truth itself does not reach, `battery.py --ceiling`).
 # Every record is fitted before the script fails, so one run shows every outcome.
 # Usage: truth_fit_subset.sh AMBDROP_BINARY SOURCE_DIR [AMBDROP_TRUTH_BINARY]
 #   (the truth binary defaults to tools/truth/ambdrop_truth beside the ambdrop binary's build
@@ -115,7 +116,7 @@ cases=("rigid_rotor_a clean 1" "rigid_rotor_a clearance_worn 4" "rigid_rotor_a s
   "rigid_rotor_a clean 11 --jitter-draws=0" "rigid_rotor_a misalignment_friction 17"
   "$housings" "rigid_rotor_a friction_one_tdb 5 --set measurement.trigger_state=\"record_start\""
   "rigid_fourdof_c clean 1"
-  "rigid_fourdof_c flux_decay_a 8" "rigid_fourdof_c misalignment_friction 17"
+  "rigid_fourdof_c flux_decay_a 8"
   "rigid_fourdof_c side_pull 16" "rigid_fourdof_c clean 202" "rigid_rotor_a misalignment_friction 217"
   "rigid_rotor_a clean 218" "rigid_rotor_a static_unbalance 406"
   "rigid_rotor_a tdb_misalignment 203" "rigid_rotor_a race_inertia 215"
@@ -148,8 +149,6 @@ expect = {
     "clean": "no_effect_needed",
     "side_pull": "unexplained",
 }
-# Records whose truth cannot reach the 3x cut (see the header): named and valued only.
-cut_beyond_the_record = {("rigid_fourdof_c", "misalignment_friction")}
 declared = {}
 failed = []
 for case in sys.argv[4:]:
@@ -226,11 +225,7 @@ for case in sys.argv[4:]:
     elif (rig, effect, seed) == ("rigid_rotor_a", "clean", "802"):
         pass  # held above: `unexplained` is not the scoring's `no_effect_needed`
     elif not row["hit"]:
-        rules = [n for n in (row["note"] or "miss").split("; ") if n]
-        if (rig, effect) in cut_beyond_the_record:
-            rules = [n for n in rules if not n.startswith("cut ")]
-        if rules:
-            problems.append("scoring: " + "; ".join(rules))
+        problems.append("scoring: " + (row["note"] or "miss"))
     if (rig, effect, seed) == ("rigid_rotor_a", "clean", "218") and \
             fit.get("trigger_state") != "record_start":
         problems.append(f"the start not taken from the record: {fit.get('trigger_state')}")
@@ -261,9 +256,10 @@ for case in sys.argv[4:]:
         # departure, no fit could change the verdict.
         problems.append("candidates fitted although a draw of the jitter took the departure")
     cut = "inf" if row["cut"] == float("inf") else f"{row['cut']:.2g}x"
+    seconds = open(f"fit_{run}/seconds.txt").read().strip()
     print(f"{rig:<15} {' '.join([effect, seed] + extra):<24} {fit['verdict']:<17} on {fit.get('judged_on', '?'):<6} "
           f"chosen {row['chosen']:<28} "
-          f"{row['value'] or '-'}; cut {cut}; {truth['description']}")
+          f"{row['value'] or '-'}; cut {cut}; {seconds} s; {truth['description']}")
     if problems:
         failed.append(f"{rig} {effect}: " + "; ".join(problems))
 if failed:
