@@ -84,8 +84,12 @@
 #     fits the start best but alone moves the speeds a little beyond what is allowed, and an
 #     NDE clearance was named with the DE friction 42 % off: each look-alike given its partner
 #     on the speeds, the offset and friction pair named, `explained`, the offset's y and the
-#     friction within 20 % (its x, 6.3 um beside 57.5, the start leaves open in sign; not the
-#     3x cut, which this record's truth itself does not reach, `battery.py --ceiling`).
+#     friction within 20 % (its x, 6.3 um beside 57.5, which the start leaves open in sign,
+#     within 20 % or called open: set back to 0 alone, the record is explained as well); not
+#     the 3x cut, which this record's truth itself does not reach (`battery.py --ceiling`);
+#   - the rigid rig's offset NDE TDB of seed 803 (`--first-seed 801`): the offset named, its x
+#     within 20 %, its y (19.7 um beside 74.7, fitted 8 um: the start's cost is flat and rough
+#     between 0 and 25 um) within 20 % or called open.
 # Every record is fitted before the script fails, so one run shows every outcome.
 # Usage: truth_fit_subset.sh AMBDROP_BINARY SOURCE_DIR [AMBDROP_TRUTH_BINARY]
 #   (the truth binary defaults to tools/truth/ambdrop_truth beside the ambdrop binary's build
@@ -123,7 +127,8 @@ cases=("rigid_rotor_a clean 1" "rigid_rotor_a clearance_worn 4" "rigid_rotor_a s
   "rigid_fourdof_c flux_decay_b 409" "rigid_rotor_a chain_lag 12"
   "rigid_rotor_a declared_off 701" "rigid_fourdof_c declared_off 707"
   "rigid_rotor_a misalignment_friction 617" "rigid_rotor_a tdb_misalignment 603"
-  "rigid_rotor_a clean 802" "rigid_fourdof_c misalignment_friction 617")
+  "rigid_rotor_a clean 802" "rigid_fourdof_c misalignment_friction 617"
+  "rigid_rotor_a tdb_misalignment 803")
 for c in "${cases[@]}"; do
   read -r rig effect seed extra <<<"$c"
   run="${rig}_${effect}_$seed${extra:+_${extra//[^a-z0-9]/}}"
@@ -151,6 +156,16 @@ expect = {
 }
 declared = {}
 failed = []
+
+
+def decided(fit, key):
+    """fit.json's `decided` of the chosen value that sets `key`; None if none sets it."""
+    for c in fit["chosen"]:
+        if any(line.startswith(key + "=") for line in c.get("set", [])):
+            return c["parameters"].get(key.rsplit(".", 1)[1], {}).get("decided")
+    return None
+
+
 for case in sys.argv[4:]:
     rig, effect, seed, *extra = case.split()
     # As the shell names it: "_" and the options' lower-case letters and digits.
@@ -183,9 +198,10 @@ for case in sys.argv[4:]:
         ("rigid_rotor_a", "217"): {"tdb.nde.misalignment.x_m": 0.2,
                                    "tdb.nde.misalignment.y_m": 0.3,
                                    "tdb.nde.friction.coefficient": 0.2},
-        # The offset's y and the friction; its x (6.3 um of 57.8) the start leaves open in sign.
+        # The offset's y and the friction; its x (6.3 um of 57.8) within 20 % or called open.
         ("rigid_fourdof_c", "617"): {"tdb.nde.misalignment.y_m": 0.2,
-                                     "tdb.de.friction.coefficient": 0.2}}
+                                     "tdb.de.friction.coefficient": 0.2,
+                                     "tdb.nde.misalignment.x_m": "open"}}
     if effect == "misalignment_friction" and (rig, seed) in pair_values:
         want = pair_values[(rig, seed)]
         got = dict(line.split("=", 1) for c in fit["chosen"] for line in c.get("set", []))
@@ -193,8 +209,11 @@ for case in sys.argv[4:]:
         for key, tol in want.items():
             true = float(sets[key])
             base = declared[rig].value(key, {}) or 0.0
-            if key not in got or abs(float(got[key]) - true) > tol * abs(true - base):
-                problems.append(f"{key}: {got.get(key)} against {true} (declared {base})")
+            off = key not in got or abs(float(got[key]) - true) > \
+                (0.2 if tol == "open" else tol) * abs(true - base)
+            if off and not (tol == "open" and decided(fit, key) is False):
+                problems.append(f"{key}: {got.get(key)} against {true} (declared {base}), "
+                                f"decided {decided(fit, key)}")
         if fit["verdict"] != "explained":
             problems.append(f"verdict {fit['verdict']}")
     elif (rig, effect, seed) == ("rigid_rotor_a", "race_inertia", "215"):
@@ -224,6 +243,12 @@ for case in sys.argv[4:]:
         pass  # below
     elif (rig, effect, seed) == ("rigid_rotor_a", "clean", "802"):
         pass  # held above: `unexplained` is not the scoring's `no_effect_needed`
+    elif (rig, effect, seed) == ("rigid_rotor_a", "tdb_misalignment", "803"):
+        # Its y (19.7 um beside 74.7) the drop's start barely moves between 0 and 25 um: within
+        # 20 % of its change, or called open (set back to 0 alone, the record is explained as
+        # well); its x within 20 % either way.
+        if not (row["hit"] or row.get("hit_but_open")):
+            problems.append("scoring: " + (row["note"] or "miss"))
     elif not row["hit"]:
         problems.append("scoring: " + (row["note"] or "miss"))
     if (rig, effect, seed) == ("rigid_rotor_a", "clean", "218") and \

@@ -339,7 +339,8 @@ int FitOneRecord(const FitOptions& options, const std::string& measured_path,
                selection.chosen.empty() ? std::string("none")
                                         : fmt::format("{}", fmt::join(selection.chosen, ", ")));
     for (const ParameterEstimate& p : selection.chosen_fit.parameters) {
-      fmt::print("    {} {} = {:.6g} +- {:.2g}\n", p.effect, p.name, p.value, p.sigma);
+      fmt::print("    {} {} = {:.6g} +- {:.2g}{}\n", p.effect, p.name, p.value, p.sigma,
+                 p.decided ? "" : " (not decided by the record: report.md says why)");
     }
     const auto fitted = std::count_if(selection.candidates.begin(), selection.candidates.end(),
                                       [](const CandidateScore& c) { return c.tried; });

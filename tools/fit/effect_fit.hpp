@@ -25,9 +25,13 @@ struct ParameterEstimate {
   double start_sigma = std::numeric_limits<double>::quiet_NaN();
   /// The search stopped on one of the parameter's bounds.
   bool at_bound = false;
-  /// False where the record leaves the value open (ParameterDecided): the model still runs
-  /// with it, but it is no measurement of the machine.
+  /// False where the record leaves the value open (ParameterDecided), or where the record is
+  /// explained without it (MarkValuesTheRecordDoesNotNeed): the model still runs with it, but
+  /// it is no measurement of the machine.
   bool decided = true;
+  /// The judged part's residual with this one value at its declared value and every other as
+  /// fitted, where that still explains the record (declared_value_check.hpp); else NaN.
+  double declared_rms = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Whether a fitted value is one the record decides. Its sigma is a lower bound, so a value is

@@ -105,6 +105,8 @@ Effect TdbMisalignment(const TdbParams& t) {
   const double x0 = m.enabled ? m.x_m : 0.0, y0 = m.enabled ? m.y_m : 0.0;
   e.parameters = {{"x_m", -0.8 * c, 0.8 * c, Distinct({x0, 0.0, 0.3 * c, -0.3 * c})},
                   {"y_m", -0.8 * c, 0.8 * c, Distinct({y0, 0.0, 0.3 * c, -0.3 * c})}};
+  e.parameters[0].declared = x0;
+  e.parameters[1].declared = y0;
   if (m.enabled) {
     e.description = fmt::format(
         "TDB {} centre offset from the magnetic centre (x, y; declared {:.4g}, {:.4g} m)", name,
@@ -132,6 +134,7 @@ Effect TdbClearance(const TdbParams& t) {
   e.family = "tdb_clearance";
   e.description = fmt::format("radial clearance of TDB {} (declared {:.4g} m)", name, c);
   e.parameters = {{"clearance_m", 0.5 * c, 2.0 * c, {c, 1.3 * c, 0.8 * c}}};
+  e.parameters[0].declared = c;
   e.revealed_by = {Q::kDisplacement, Q::kTdbNormalForce, Q::kTdbSupportForce,
                    Q::kControllerCommand};
   e.probe = {1.5 * c};
@@ -156,6 +159,10 @@ Effect FrictionCoefficientOf(const std::vector<TdbParams>& tdbs, std::string nam
   e.family = "friction_coefficient";
   e.description = std::move(description);
   e.parameters = {{"coefficient", 0.01, 0.8, {mu, 0.5 * mu, std::min(0.8, 2.0 * mu)}}};
+  // One declared coefficient for all of them, or none to return to.
+  bool alike = true;
+  for (const TdbParams& t : rubbing) alike = alike && SlidingCoefficient(t) == mu;
+  if (!rubbing.empty() && alike) e.parameters[0].declared = mu;
   e.revealed_by = {Q::kDisplacement, Q::kTdbSpeed,        Q::kTdbNormalForce,
                    Q::kRotorSpeed,   Q::kTdbSupportForce, Q::kControllerCommand};
   e.probe = {mu < 0.4 ? 2.0 * mu : 0.5 * mu};
@@ -360,12 +367,18 @@ Effect FluxDecayHold(const ModelParams& declared) {
   std::vector<double> tau_starts = {2e-3, 8e-3};
   // A declared hold is refitted from where it was declared too (issue 23: a declared law's
   // numbers are suspects, starting from their declared values).
-  if (const FluxDecayParams* f = DeclaredHoldLaw(declared).law) {
+  const DeclaredHold declared_hold = DeclaredHoldLaw(declared);
+  if (const FluxDecayParams* f = declared_hold.law) {
     hold_starts = Distinct({f->hold_time_s, 5e-4, 2e-3});
     tau_starts = Distinct({f->time_constant_s, 2e-3, 8e-3});
   }
   e.parameters = {{"hold_time_s", 0.0, 1e-2, hold_starts},
                   {"time_constant_s", 1e-4, 0.1, tau_starts}};
+  // Every AMB's law as one declared hold: each number can return to it.
+  if (declared_hold.law != nullptr && declared_hold.alike) {
+    e.parameters[0].declared = declared_hold.law->hold_time_s;
+    e.parameters[1].declared = declared_hold.law->time_constant_s;
+  }
   e.revealed_by = {Q::kDisplacement, Q::kCurrent, Q::kTdbNormalForce, Q::kTdbSupportForce};
   e.probe = {2e-3, 2e-2};
   e.overrides = [ambs](const std::vector<double>& v) {
@@ -405,6 +418,7 @@ std::optional<Effect> FluxDecayHoldPart(const ModelParams& declared, bool hold) 
         "fading as declared (every AMB)",
         law->hold_time_s);
     e.parameters = {{key, 0.0, 1e-2, Distinct({law->hold_time_s, 5e-4, 2e-3})}};
+    e.parameters[0].declared = law->hold_time_s;
     e.probe = {law->hold_time_s > 1e-3 ? 0.25 * law->hold_time_s : 2e-3 + law->hold_time_s};
   } else {
     e.name = "amb_flux_decay_hold_tau";
@@ -413,6 +427,7 @@ std::optional<Effect> FluxDecayHoldPart(const ModelParams& declared, bool hold) 
         "than the declared {:.4g} s (every AMB)",
         law->time_constant_s);
     e.parameters = {{key, 1e-4, 0.1, Distinct({law->time_constant_s, 2e-3, 8e-3})}};
+    e.parameters[0].declared = law->time_constant_s;
     e.probe = {law->time_constant_s > 2e-3 ? 0.25 * law->time_constant_s
                                            : 4.0 * law->time_constant_s};
   }
@@ -456,6 +471,7 @@ Effect SensorRunoutHarmonic(const SensorParams& s, double clearance, int order) 
       {"amplitude_" + x + "_m", 0.0, std::max(0.3 * clearance, 2.0 * a0),
        Distinct({a0, 0.0, 0.02 * clearance})},
       {"phase_" + x + "_rad", -kPi, kPi, Distinct({p0, 0.0, 0.5 * kPi, kPi, -0.5 * kPi}), true}};
+  e.parameters[0].declared = a0;
   if (a0 > 0.0) e.description += fmt::format(" (declared {:.4g} m)", a0);
   // The controller acts on the readings: its command shows them too.
   e.revealed_by = {Q::kDisplacement, Q::kControllerCommand};
@@ -482,6 +498,8 @@ Effect SensorGainOffset(const SensorParams& s, double clearance) {
   e.description = fmt::format("scale error and offset of sensor {}", name);
   e.parameters = {{"gain", 0.7, 1.3, {s.gain}},
                   {"offset_m", -0.5 * clearance, 0.5 * clearance, {s.offset_m}}};
+  e.parameters[0].declared = s.gain;
+  e.parameters[1].declared = s.offset_m;
   // The controller acts on the readings: its command shows them too.
   e.revealed_by = {Q::kDisplacement, Q::kControllerCommand};
   e.probe = {1.2 * s.gain, s.offset_m + 0.1 * clearance};
@@ -515,6 +533,9 @@ Effect SensorLagOf(const std::vector<const SensorParams*>& sensors, double sampl
       {"delay_s", 0.0, longest, Distinct({d0, 0.0, 2 * sample_s, 5 * sample_s})},
       {"filter_time_constant_s", 0.0, 1e-3,
        s.lag.enabled ? Distinct({tau0, 0.0, 2e-4}) : std::vector<double>{0.0, 2e-4, 0.0}}};
+  // The declared lag where it is within the fit's bounds (none: 0 and 0).
+  if (d0 == s.lag.delay_s || !s.lag.enabled) e.parameters[0].declared = d0;
+  if (tau0 < 1e-3 || !s.lag.enabled) e.parameters[1].declared = tau0;
   if (s.lag.enabled) {
     e.description += fmt::format(" (declared {:.4g} s, {:.4g} Hz)", s.lag.delay_s, s.lag.cutoff_Hz);
   }
@@ -551,6 +572,7 @@ Effect TdbDrag(const TdbParams& t) {
   // A size from 0 over decades: the chaos guard's nudge is a thousandth of the value, not of the
   // 5 N m range (that nudge, 5 mN m, was five times a fitted 0.92 mN m drag).
   e.parameters = {{"drag_torque_N_m", 0.0, 5.0, {0.0, 0.05, 0.5}, false, 0.0, true}};
+  e.parameters[0].declared = t.spin.drag_torque_N_m;
   e.revealed_by = {Q::kTdbSpeed, Q::kDisplacement, Q::kRotorSpeed, Q::kTdbSupportForce,
                    Q::kControllerCommand};
   e.probe = {2.0};
@@ -794,6 +816,7 @@ void AddRaceSpinEffects(const LoadedConfig& config, std::vector<Effect>* effects
   if (drag.parameters.front().name != "scale") {
     // None declared: the per-TDB drag's range and starts, a size from 0 over decades.
     drag.parameters = {{"drag_torque_N_m", 0.0, 5.0, {0.0, 0.05, 0.5}, false, 0.0, true}};
+    drag.parameters[0].declared = 0.0;
     drag.probe = {2.0};
   }
   effects->push_back(std::move(drag));

@@ -4,6 +4,7 @@
 // `--set` overrides of the declared config, so a fitted effect goes straight into the user's
 // command line or config.
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,9 @@ struct EffectParameter {
   /// A positive size known only to its decade (a ribbon's slipping stiffness): searched
   /// evenly in its logarithm between the bounds, which must then be positive.
   bool log_scale = false;
+  /// The value at which it leaves the declared model as it is (a TDB offset's 0 where none is
+  /// declared, a key's declared value); NaN where no value does (a law the model lacks).
+  double declared = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct Effect {

@@ -70,6 +70,7 @@ void Parameters(JsonWriter& json, const EffectFit& fit, const std::string& effec
     json.Key("sigma").Number(p.sigma);
     if (std::isfinite(p.start_sigma)) json.Key("start_sigma").Number(p.start_sigma);
     json.Key("decided").Bool(p.decided);
+    if (std::isfinite(p.declared_rms)) json.Key("declared_rms").Number(p.declared_rms);
     json.EndObject();
   }
   json.EndObject();
@@ -423,8 +424,14 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
                   ? fmt::format(" (the rotor's jitter at the trigger {:.2g} of it)", p.start_sigma)
                   : "",
               p.decided ? ""
-                        : " (not decided: the record leaves it open; the model runs with it, "
-                          "but it measures nothing)");
+              : std::isfinite(p.declared_rms)
+                  ? fmt::format(
+                        " (not decided: at its declared value, the rest as fitted, the record is "
+                        "explained as well, {:.3g} on the judged part; the model runs with it, "
+                        "but it measures nothing)",
+                        p.declared_rms)
+                  : " (not decided: the record leaves it open; the model runs with it, "
+                    "but it measures nothing)");
         }
       }
       // Exactly what was applied: the --set lines of the declared config.

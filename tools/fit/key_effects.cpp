@@ -52,6 +52,7 @@ Effect DeclaredValueOff(const ConfigKey& key, KeyEffectInfo info, FitRange range
     p.magnitude = false;
     for (double& s : p.starts) s = std::round(s);
   }
+  p.declared = key.value;
   e.parameters = {p};
   // The far end of the range from the declared value: strong, as a probe must be.
   e.probe = {range.upper - key.value >= key.value - range.lower ? range.upper : range.lower};
@@ -109,6 +110,7 @@ Effect DeclaredValuesTogether(const std::vector<ConfigKey>& keys, KeyEffectInfo 
   }
   e.parameters = {
       {"scale", lower, upper, {1.0, std::clamp(0.7, lower, upper), std::clamp(1.4, lower, upper)}}};
+  e.parameters[0].declared = 1.0;
   e.probe = {upper - 1.0 >= 1.0 - lower ? upper : lower};
   struct Declared {
     std::string path;
