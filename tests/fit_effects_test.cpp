@@ -275,6 +275,30 @@ TEST(FitVerdicts, CleanRecordNeedsNoEffect) {
   EXPECT_EQ(s.limit_after, s.limit);
 }
 
+// A TDB offset along x alone: the fit names the offset and finds x, and its y, fitted a little off
+// the true 0, is one the record does without (set back to 0, x as fitted, the record is explained
+// as well): open, with its residual there. Its x is needed (set back to 0, the drop's start
+// departs), so it stays decided.
+TEST(FitDeclaredValues, AnOffsetAlongOneAxisLeavesTheOtherOpen) {
+  const Fitted f = FitTruth({"tdb.de.misalignment.enabled=true", "tdb.de.misalignment.x_m=6e-5"});
+  const Selection& s = f.fit->selection;
+  ASSERT_EQ(s.verdict, "explained") << s.reason;
+  ASSERT_FALSE(s.chosen.empty());
+  ASSERT_EQ(s.chosen.front(), "tdb_misalignment:de") << s.reason;
+  const ParameterEstimate* x = ChosenParameter(*f.fit, "tdb_misalignment:de", "x_m");
+  const ParameterEstimate* y = ChosenParameter(*f.fit, "tdb_misalignment:de", "y_m");
+  ASSERT_NE(x, nullptr);
+  ASSERT_NE(y, nullptr);
+  EXPECT_NEAR(x->value, 6e-5, 0.2 * 6e-5);
+  EXPECT_TRUE(x->decided) << "x " << x->value << " declared_rms " << x->declared_rms;
+  EXPECT_TRUE(std::isnan(x->declared_rms));
+  // Fitted exactly at its declared 0 it would not be asked (nothing to set back).
+  ASSERT_NE(y->value, 0.0);
+  EXPECT_LT(std::abs(y->value), 0.2 * 6e-5) << "y " << y->value;
+  EXPECT_FALSE(y->decided) << "y " << y->value << " +- " << y->sigma;
+  EXPECT_LE(y->declared_rms, s.limit_after);
+}
+
 // A candidate the config refuses (here one writing a key no table has) is neither fitted nor
 // said undecidable: its row and fit.json say the config refuses it, and why. Such a candidate
 // once scored a residual of 1 without a word.
