@@ -123,4 +123,9 @@ double ChaosAllowance(const RecordCost& part_cost, const Selection::Part& part) 
   return std::max(part.step_sensitivity, part.start_sensitivity);
 }
 
+double PartAllowance(const RecordCost& part_cost, const Selection::Part& part, double level,
+                     const SelectionRules& rules) {
+  return std::hypot(level, rules.model_floor_factor * ChaosAllowance(part_cost, part));
+}
+
 }  // namespace ambdrop

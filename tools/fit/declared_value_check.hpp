@@ -17,8 +17,8 @@ namespace ambdrop {
 /// For each value of `fit` (two or more across its effects) whose parameter has a declared value
 /// (EffectParameter::declared) it differs from, runs the model with that one value set back to
 /// it and every other as fitted; where `explains` says that model still explains the record
-/// (the judged part within its limit, no other part taken beyond what the chosen model leaves
-/// there, as the caller judged the chosen model), the value is not decided
+/// (the caller's test: the judged part within its limit, and every other part the chosen model
+/// agrees with still agreeing), the value is not decided
 /// (ParameterEstimate::decided false, declared_rms the judged part's residual there). A value
 /// is set back alone: with the others refitted the record could only need it less, so no value
 /// is called open that a refit would need. One run per value; `threads` runs at once.

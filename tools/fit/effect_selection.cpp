@@ -246,9 +246,8 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
     for (const PartOf& p : others) {
       const double after = OverallRms(*p.cost, p.cost->Residual(sim).squaredNorm());
       const double before = reference(p);
-      const double floor = ChaosAllowance(*p.cost, *p.part);
       const double allowed =
-          std::hypot(std::max(p.part->limit, before), rules.model_floor_factor * floor);
+          PartAllowance(*p.cost, *p.part, std::max(p.part->limit, before), rules);
       if (after > allowed) return say(p, before, after, allowed);
     }
     return {};
@@ -287,8 +286,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
       return "the record refutes it: " + why;
     }
     for (const PartOf& p : others) {
-      const double floor = ChaosAllowance(*p.cost, *p.part);
-      const double allowed = std::hypot(p.part->limit, rules.model_floor_factor * floor);
+      const double allowed = PartAllowance(*p.cost, *p.part, p.part->limit, rules);
       const double before = p.part->rms_before;
       if (!(before > allowed)) continue;
       const double after = OverallRms(*p.cost, p.cost->Residual(sim).squaredNorm());
@@ -559,8 +557,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
     const SimulatedRecord chosen_run = fitted_run(s.chosen_fit);
     std::vector<std::pair<const PartOf*, double>> agreed;  // with what each allows
     for (const PartOf& p : others) {
-      const double allowed =
-          std::hypot(p.part->limit, rules.model_floor_factor * ChaosAllowance(*p.cost, *p.part));
+      const double allowed = PartAllowance(*p.cost, *p.part, p.part->limit, rules);
       if (OverallRms(*p.cost, p.cost->Residual(chosen_run).squaredNorm()) <= allowed) {
         agreed.emplace_back(&p, allowed);
       }

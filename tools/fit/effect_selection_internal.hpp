@@ -42,6 +42,11 @@ Selection::Part JudgePart(const ConfigVariants& declared, const RecordCost& cost
                           const Eigen::VectorXd& residual_before, double noise_floor,
                           const SelectionRules& rules, const ModelFloors::Part& known);
 double ChaosAllowance(const RecordCost& part_cost, const Selection::Part& part);
+/// How far a part not judged may go under a change of the model: `level` (its limit, or what
+/// something else leaves there if larger) widened in quadrature by twice its chaos allowance
+/// (SelectionRules::model_floor_factor).
+double PartAllowance(const RecordCost& part_cost, const Selection::Part& part, double level,
+                     const SelectionRules& rules);
 
 // judged_part_selection.cpp
 /// `e` as a candidate not yet screened or fitted: its names, and whether these channels could

@@ -203,10 +203,9 @@ void AddSpeedsPartner(const ConfigVariants& declared, const RecordCost& whole,
       if (!harm.empty()) return;
       const double after = OverallRms(part_cost, part_cost.Residual(with).squaredNorm());
       const double before = OverallRms(part_cost, part_cost.Residual(alone).squaredNorm());
-      const double floor = ChaosAllowance(part_cost, part);
-      const double allowed =
-          std::hypot(std::max(part.limit_after > 0.0 ? part.limit_after : part.limit, before),
-                     rules.model_floor_factor * floor);
+      const double allowed = PartAllowance(
+          part_cost, part, std::max(part.limit_after > 0.0 ? part.limit_after : part.limit, before),
+          rules);
       if (after > allowed) {
         harm = fmt::format("{} takes the residual {} to {:.3g} (allowed {:.3g})", c.name, phrase,
                            after, allowed);
