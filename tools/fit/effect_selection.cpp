@@ -384,6 +384,27 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
       s = std::move(first);
     }
   }
+  // Where the start itself departs, its draws before the candidates too (TakeStartJitterDraw
+  // says why). Runs to the start's end only. Not where the state at the trigger comes from the
+  // record: there what is left open of the start is the estimate's, which the least shift of
+  // that state answers (TakeStartStateShift).
+  if (on == "early" && early_cost && rules.jitter_draws > 0 &&
+      !early_cost->measurement().trigger_state_from_record) {
+    Selection first = unchosen(on);
+    const JitterDraws start_draws =
+        DrawJitter(*early_cost, *early_cost, first.limit, rules.jitter_draws, rules.threads, false);
+    if (start_draws.first_within > 0) {
+      for (const Effect& e : library) {
+        CandidateScore c = ListedCandidate(e, cost.measurement());
+        c.screened = e.screened;
+        first.candidates.push_back(std::move(c));
+      }
+      first.rms_after = first.rms_before;
+      first.limit_after = first.limit;
+      TakeStartJitterDraw(start_draws, &first);
+      s = std::move(first);
+    }
+  }
   if (s.verdict.empty()) s = select_on(on);
   if (on == "spectrum" && later != on && s.chosen.empty()) {
     s = select_on(later);

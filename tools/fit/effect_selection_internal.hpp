@@ -70,6 +70,9 @@ std::string NoDrawAgreed(const JitterDraws& j, const char* which, const char* wh
 void TakeJitterDraws(const RecordCost& cost, const RecordCost& judged, const std::string& on,
                      const Selection::Part& early, const SelectionRules& rules, Selection* s,
                      const JitterDraws* drawn = nullptr);
+/// Where the drop's start itself departs and `drawn` (runs of the declared model with the
+/// rotor's jitter drawn, judged on the start) has one that agrees there: no effect is needed.
+void TakeStartJitterDraw(const JitterDraws& drawn, Selection* s);
 /// Where the declared model's draws (s->jitter) never reached the record's drop mode: an effect
 /// chosen after the start whose model does not reach it either is set aside (`unexplained`).
 void SetAsideEffectOutsideTheRecordsMode(const ConfigVariants& declared, const RecordCost& cost,

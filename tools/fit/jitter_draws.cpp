@@ -44,7 +44,7 @@ bool SameMode(const std::vector<PlaneWhirl>& planes) {
 }  // namespace
 
 JitterDraws DrawJitter(const RecordCost& cost, const RecordCost& judged, double judged_limit,
-                       int max_draws, int threads) {
+                       int max_draws, int threads, bool match_modes) {
   JitterDraws d;
   const ModelParams& params = cost.declared();
   const MeasurementParams& m = cost.measurement();
@@ -68,7 +68,8 @@ JitterDraws DrawJitter(const RecordCost& cost, const RecordCost& judged, double 
     d.jitter_sigma_m = DisplacementNoiseMedian(cost);
     if (!(d.jitter_sigma_m > 0.0)) return d;
   }
-  const std::vector<PlaneWhirl> planes = ComparePlaneWhirls(params, m, r, base);
+  const std::vector<PlaneWhirl> planes =
+      match_modes ? ComparePlaneWhirls(params, m, r, base) : std::vector<PlaneWhirl>{};
   d.mode_differs = !planes.empty() && !SameMode(planes);
   if (!planes.empty()) {
     d.record_mode = ModeText(planes, true);

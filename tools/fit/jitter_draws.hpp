@@ -46,8 +46,10 @@ struct JitterDraws {
 /// covariance and each held current's standard error (trigger_state_probes.hpp; a seeded
 /// portable generator). Nothing is run open loop. Deterministic: the batches do not depend on
 /// `threads`.
+/// With `match_modes` false only agreement on `judged` stops the draws (a part that ends
+/// before the drop settles has no mode to match).
 JitterDraws DrawJitter(const RecordCost& cost, const RecordCost& judged, double judged_limit,
-                       int max_draws, int threads);
+                       int max_draws, int threads, bool match_modes = true);
 
 /// What a run of the draws had drawn, for a reason's text: "with its controller answering
 /// sensor noise of the record's level (3e-07 m)" or "with its state at the trigger drawn from
