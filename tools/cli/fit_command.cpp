@@ -489,7 +489,8 @@ RegisteredCommand AddFitCommand(CLI::App& app) {
       ->add_option("--jitter-draws", options->jitter_draws,
                    "Where the declared model agrees with the drop's start and departs after "
                    "it: this many runs of it with its rotor's jitter at the trigger drawn, "
-                   "before any effect is taken for the departure (and four times as many of the "
+                   "before any effect is taken for the departure (four times as many where the "
+                   "closest came within 1.25 times the limit; and four times as many of the "
                    "fitted model, before a second effect is fitted to its speeds); up to 8 of "
                    "them also span the start's own sensitivity to that jitter (0: none)")
       ->check(CLI::Range(0, 64))

@@ -155,6 +155,10 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     json.Key("jitter_sigma_m").Number(s.jitter.jitter_sigma_m);
     json.Key("runs").Integer(s.jitter.draws);
     json.Key("first_within_limit").Integer(s.jitter.first_within);
+    if (std::isfinite(s.jitter.closest_rms)) {
+      json.Key("closest_rms").Number(s.jitter.closest_rms);
+    }
+    json.Key("extended").Bool(s.jitter.extended);
     json.Key("record_mode").String(s.jitter.record_mode);
     json.Key("declared_mode").String(s.jitter.model_mode);
     json.Key("first_in_record_mode").Integer(s.jitter.first_match);

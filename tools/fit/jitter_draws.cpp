@@ -44,7 +44,7 @@ bool SameMode(const std::vector<PlaneWhirl>& planes) {
 }  // namespace
 
 JitterDraws DrawJitter(const RecordCost& cost, const RecordCost& judged, double judged_limit,
-                       int max_draws, int threads, bool match_modes) {
+                       int max_draws, int threads, bool match_modes, double extend_within) {
   JitterDraws d;
   const ModelParams& params = cost.declared();
   const MeasurementParams& m = cost.measurement();
@@ -77,9 +77,17 @@ JitterDraws DrawJitter(const RecordCost& cost, const RecordCost& judged, double 
   }
   d.ran = true;
   constexpr int kBatch = 4;
-  for (int first = 1; first <= max_draws && d.first_within == 0 && d.first_match == 0;
-       first += kBatch) {
-    const int count = std::min(kBatch, max_draws - first + 1);
+  int cap = max_draws;
+  for (int first = 1; d.first_within == 0 && d.first_match == 0; first += kBatch) {
+    if (first > cap) {
+      if (d.extended || !(extend_within > 0.0) ||
+          !(d.closest_rms <= extend_within * judged_limit)) {
+        break;
+      }
+      d.extended = true;
+      cap = 4 * max_draws;
+    }
+    const int count = std::min(kBatch, cap - first + 1);
     std::vector<char> match(static_cast<std::size_t>(count), 0);
     std::vector<double> rms(match.size(), 0.0);
     ParallelFor(match.size(), threads, [&](std::size_t i) {
@@ -101,6 +109,7 @@ JitterDraws DrawJitter(const RecordCost& cost, const RecordCost& judged, double 
     });
     for (std::size_t i = 0; i < match.size(); ++i) {
       const int run = first + static_cast<int>(i);
+      if (!(rms[i] >= d.closest_rms)) d.closest_rms = rms[i];
       if (d.first_within == 0 && rms[i] <= judged_limit) {
         d.first_within = run;
         d.within_rms = rms[i];
@@ -113,6 +122,13 @@ JitterDraws DrawJitter(const RecordCost& cost, const RecordCost& judged, double 
     d.draws += count;
   }
   return d;
+}
+
+SimulatedRecord RunDraw(const RecordCost& cost, const JitterDraws& d, int run) {
+  RecordRunOptions o = cost.run_options();
+  o.jitter_sigma_m = d.jitter_sigma_m;
+  o.jitter_seed = static_cast<std::uint64_t>(run);
+  return SimulateOnRecord(cost.declared(), cost.measurement(), cost.record(), o);
 }
 
 std::string DrawnText(const JitterDraws& d) {
