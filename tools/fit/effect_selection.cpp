@@ -366,6 +366,17 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
   // second draw reached the record's mode.
   Selection s;
   std::optional<JitterDraws> drawn;
+  // Where a draw takes the departure: every candidate listed, none fitted (the report says what
+  // was not tried), the residual as declared.
+  const auto nothing_fitted = [&](Selection* sel) {
+    for (const Effect& e : library) {
+      CandidateScore c = ListedCandidate(e, cost.measurement());
+      c.screened = e.screened;
+      sel->candidates.push_back(std::move(c));
+    }
+    sel->rms_after = sel->rms_before;
+    sel->limit_after = sel->limit;
+  };
   judge_on(on);
   if ((on == "speeds" || on == "whole") && departure(part_for(on)) > 1.0 && start_agrees &&
       rules.jitter_draws > 0) {
@@ -373,27 +384,20 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
     drawn = DrawJitter(cost, cost_for(on), first.limit, rules.jitter_draws, rules.threads, true,
                        rules.min_cut);
     if (drawn->first_within > 0 || drawn->first_match > 0) {
-      // Listed, none fitted: the report says what was not tried.
-      for (const Effect& e : library) {
-        CandidateScore c = ListedCandidate(e, cost.measurement());
-        c.screened = e.screened;
-        first.candidates.push_back(std::move(c));
-      }
-      first.rms_after = first.rms_before;
-      first.limit_after = first.limit;
+      nothing_fitted(&first);
       TakeJitterDraws(cost, cost_for(on), on, early, rules, &first, &*drawn);
       s = std::move(first);
     }
   }
   // Where the start itself departs, its draws before the candidates too (TakeStartJitterDraw
-  // says why). Runs to the start's end only. Not where the state at the trigger comes from the
-  // record: there what is left open of the start is the estimate's, which the least shift of
-  // that state answers (TakeStartStateShift).
-  // The run that agrees there must leave the rest of the record where a part not judged may
-  // be (within its limit widened by twice its model floor): on the 4-DOF truth rig's offset-
-  // and-friction record of seed 617 run 18 took the start within its limit while the speeds,
-  // which the DE race's friction moves, departed as the noise-free run's. Not where the time
-  // before the trigger departs: the jitter at the trigger moves nothing there.
+  // says why), run to the start's end only. The run that agrees there must leave the rest of
+  // the record where a part not judged may be (within its limit widened by twice its model
+  // floor): on the 4-DOF truth rig's offset-and-friction record of seed 617 run 18 took the
+  // start within its limit while the speeds, which the DE race's friction moves, departed as
+  // the noise-free run's. Not where the time before the trigger departs (the jitter at the
+  // trigger moves nothing there), nor where the state at the trigger comes from the record:
+  // there what is left open of the start is the estimate's, which the least shift of that
+  // state answers (TakeStartStateShift).
   if (on == "early" && early_cost && rules.jitter_draws > 0 && !levitated_departs &&
       !spectrum_departs && !early_cost->measurement().trigger_state_from_record) {
     Selection first = unchosen(on);
@@ -410,13 +414,7 @@ Selection SelectEffects(const ConfigVariants& declared, const RecordCost& cost,
       }
     }
     if (rest_agrees) {
-      for (const Effect& e : library) {
-        CandidateScore c = ListedCandidate(e, cost.measurement());
-        c.screened = e.screened;
-        first.candidates.push_back(std::move(c));
-      }
-      first.rms_after = first.rms_before;
-      first.limit_after = first.limit;
+      nothing_fitted(&first);
       TakeStartJitterDraw(start_draws, &first);
       s = std::move(first);
     }
