@@ -8,16 +8,14 @@
 #     race (seen on the speeds only: the verdict judges them) are each named first (an effect
 #     that sets that key), the value within 20 % of the true change from the declared, the
 #     residual above noise cut at least 3x, on the part the verdict judges;
-#   - a constant side pull (outside the library) gives `unexplained` and chooses nothing;
 #   - a clean record of another seed (11) whose drop goes into backward whirl where the
 #     declared model's noise-free drop rocks gives `no_effect_needed`, nothing chosen, with a
 #     run of the declared model whose rotor jitters at the trigger in the record's mode or
 #     within the limit (fit.json `jitter_draws`), and no candidate fitted (on every record the
 #     draws come first where a later part departs): effects that flip the model's mode cut its
-#     speeds 6x; fitted again with no jitter drawn (--jitter-draws=0), the same departure after
-#     an agreeing start is either taken only by models too chaotic to confirm (`no_effect_needed`
-#     with fit.json `unconfirmed_departure` and those effects as `closest`) or named by a model
-#     steady enough to confirm it (its own floor within twice the limit): what the draws are for;
+#     speeds 6x (fitted with --jitter-draws=0, the DE TDB's station was named: what the draws
+#     are for; that fit, 35-65 s, and the rigid rig's side pull of seed 16, whose `unexplained`
+#     the 4-DOF rig's below holds harder, left CI in session 42 for its 30 minutes);
 #   - an offset NDE TDB with the DE TDB's friction high: the pair named, both within 20 % (the
 #     pair's search along the friction finds it; it had stopped at a y offset 24 % off);
 #   - a Dahl ribbon under the NDE housing, with each housing's mass declared (as a rig sheet
@@ -29,8 +27,9 @@
 #   - on the 4-DOF rig (tests/truth/rigid_fourdof_c.toml: moving races, Hertzian contacts, a
 #     declared hold-then-fall power loss): its clean record, an exponential power loss where
 #     the hold is declared (the law switched, its time constant within 20 % of the change),
-#     and a side pull there too, which the magnets' fading law takes most of the way on the
-#     drop's start while the speeds refute it: `unexplained`, nothing chosen (its offset-and-
+#     and a constant side pull (outside the library), which the magnets' fading law takes most
+#     of the way on the drop's start while the speeds refute it: `unexplained`, nothing chosen
+#     (its offset-and-
 #     friction record of seed 17, where the friction shows on the speeds only, was held here
 #     until session 40: seed 617 below holds the same pair harder, and CI's 30 minutes needed
 #     its 48 s);
@@ -126,8 +125,8 @@ fi
 housings="rigid_rotor_a dahl_ribbon 13 --set tdb.nde.contact_law.outer_race_mass_kg=0.3"
 housings+=" --set tdb.de.contact_law.outer_race_mass_kg=0.3"
 cases=("rigid_rotor_a clean 1" "rigid_rotor_a clearance_worn 4" "rigid_rotor_a sensor_offset 11"
-  "rigid_rotor_a race_inertia 15" "rigid_rotor_a side_pull 16" "rigid_rotor_a clean 11"
-  "rigid_rotor_a clean 11 --jitter-draws=0" "rigid_rotor_a misalignment_friction 17"
+  "rigid_rotor_a race_inertia 15" "rigid_rotor_a clean 11"
+  "rigid_rotor_a misalignment_friction 17"
   "$housings" "rigid_rotor_a friction_one_tdb 5 --set measurement.trigger_state=\"record_start\""
   "rigid_fourdof_c clean 1"
   "rigid_fourdof_c flux_decay_a 8"
@@ -187,8 +186,7 @@ for case in sys.argv[4:]:
     truth = json.load(open(f"rec_{rig}_{effect}_{seed}/truth.json"))
     fit = json.load(open(f"fit_{run}/fit.json"))
     row = battery.score(effect, truth, fit, declared[rig])
-    jitterless = extra == ["--jitter-draws=0"]
-    verdict = None if jitterless else expect.get(effect)
+    verdict = expect.get(effect)
     problems = []
     if (rig, effect, seed) == ("rigid_rotor_a", "clean", "802"):
         # The record's NDE journal whirls backward where no run of the declared model does: the
@@ -249,8 +247,6 @@ for case in sys.argv[4:]:
             above = lambda r: max(0.0, r * r - noise * noise) ** 0.5
             if above(part["rms_before"]) < 3.0 * above(e["rms_after"]):
                 problems.append(f"{e['effect']} cuts {part['rms_before']} only to {e['rms_after']}")
-    elif jitterless:
-        pass  # below
     elif (rig, effect, seed) == ("rigid_rotor_a", "clean", "802"):
         pass  # held above: `unexplained` is not the scoring's `no_effect_needed`
     elif (rig, effect, seed) == ("rigid_rotor_a", "tdb_misalignment", "803"):
@@ -268,23 +264,7 @@ for case in sys.argv[4:]:
             fit.get("trigger_state") != "record_start":
         problems.append(f"the start not taken from the record: {fit.get('trigger_state')}")
     draw = fit.get("jitter_draws")
-    if jitterless:
-        # Without the draws, the same departure after an agreeing start is taken by whatever
-        # reaches it: a model too chaotic to confirm anything is set aside (the departure
-        # unconfirmed, the effects as `closest`); one steady enough to be confirmed is named,
-        # which is what the draws are for (with them, the same record needs no effect). Since
-        # a station's range reaches towards its neighbours, the DE TDB 24 mm off makes the
-        # record's backward whirl with a floor of 0.008 against a limit of 0.020: named.
-        if fit.get("unconfirmed_departure"):
-            if not fit.get("closest", {}).get("effects"):
-                problems.append("an unconfirmed departure without its closest effects")
-        elif not fit["chosen"] or \
-                fit["model_floor_after"] > 2.0 * fit["agreement_limit"]:
-            problems.append("a departure after the start neither set aside as unconfirmed nor "
-                            f"named by a model steady enough to confirm it: {fit['reason'][:300]}")
-        if draw and draw.get("runs", 0) > 0:
-            problems.append(f"jitter drawn with --jitter-draws=0: {draw}")
-    elif (rig, effect, seed) == ("rigid_rotor_a", "clean", "11") and not (
+    if (rig, effect, seed) == ("rigid_rotor_a", "clean", "11") and not (
             draw and (draw["first_within_limit"] > 0 or (
                 draw["first_in_record_mode"] > 0 and "backward_whirl" in draw["record_mode"]))):
         problems.append(f"no run of the declared model in the record's whirl: {draw}")
