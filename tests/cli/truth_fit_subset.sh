@@ -29,10 +29,9 @@
 #     the hold is declared (the law switched, its time constant within 20 % of the change),
 #     and a constant side pull (outside the library), which the magnets' fading law takes most
 #     of the way on the drop's start while the speeds refute it: `unexplained`, nothing chosen
-#     (its offset-and-
-#     friction record of seed 17, where the friction shows on the speeds only, was held here
-#     until session 40: seed 617 below holds the same pair harder, and CI's 30 minutes needed
-#     its 48 s);
+#     (its offset-and-friction record of seed 17, where the friction shows on the speeds only,
+#     was held here until session 40: seed 617 below holds the same pair harder, and CI's 30
+#     minutes needed its 48 s);
 #   - two records of other draws (`ambdrop_truth --battery --first-seed 201`): the 4-DOF rig's
 #     clean seed 202, whose rotor started 0.4 mm/s off the model's rest and whose start departs
 #     beyond a limit that a synchronous orbit shift sets (the start's jitter draws span it):
