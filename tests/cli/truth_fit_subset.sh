@@ -4,10 +4,11 @@
 # time in ms, no conversion) with the rig's translated config tests/truth/rigid_rotor_a.toml, each held to the scoring rules of tools/truth/battery.py (one
 # place for them):
 #   - a clean record gives `no_effect_needed` and chooses nothing;
-#   - a worn TDB clearance (physics), a one-axis sensor offset (a sensor effect) and a heavier
-#     race (seen on the speeds only: the verdict judges them) are each named first (an effect
-#     that sets that key), the value within 20 % of the true change from the declared, the
-#     residual above noise cut at least 3x, on the part the verdict judges;
+#   - a worn TDB clearance (physics) and a one-axis sensor offset (a sensor effect) are each
+#     named first (an effect that sets that key), the value within 20 % of the true change from
+#     the declared, the residual above noise cut at least 3x, on the part the verdict judges (a
+#     heavier race of seed 15, seen on the speeds only, was held so until session 43: seed 215
+#     below holds the race's inertia, and CI's 30 minutes needed its 31 s);
 #   - a clean record of another seed (11) whose drop goes into backward whirl where the
 #     declared model's noise-free drop rocks gives `no_effect_needed`, nothing chosen, with a
 #     run of the declared model whose rotor jitters at the trigger in the record's mode or
@@ -29,9 +30,9 @@
 #     the hold is declared (the law switched, its time constant within 20 % of the change),
 #     and a constant side pull (outside the library), which the magnets' fading law takes most
 #     of the way on the drop's start while the speeds refute it: `unexplained`, nothing chosen
-#     (its offset-and-friction record of seed 17, where the friction shows on the speeds only,
-#     was held here until session 40: seed 617 below holds the same pair harder, and CI's 30
-#     minutes needed its 48 s);
+#     (its offset-and-friction records, where the friction shows on the speeds only, were held
+#     here until sessions 40 and 43, seeds 17 and 617: the second, each look-alike given its
+#     partner on the speeds, 77 s of CI's 30 minutes; the kind batteries hold them since);
 #   - two records of other draws (`ambdrop_truth --battery --first-seed 201`): the 4-DOF rig's
 #     clean seed 202, whose rotor started 0.4 mm/s off the model's rest and whose start departs
 #     beyond a limit that a synchronous orbit shift sets (the start's jitter draws span it):
@@ -78,13 +79,6 @@
 #     run with its jitter drawn; both journal radii 6 % large took the speeds just within their
 #     limit with a model that rocks too: `unexplained`, nothing chosen, the radii as `closest`
 #     (they had been named, partly explaining a clean record);
-#   - the 4-DOF rig's offset-and-friction seed 617 (`--first-seed 601`), where the NDE offset
-#     fits the start best but alone moves the speeds a little beyond what is allowed, and an
-#     NDE clearance was named with the DE friction 42 % off: each look-alike given its partner
-#     on the speeds, the offset and friction pair named, `explained`, the offset's y and the
-#     friction within 20 % (its x, 6.3 um beside 57.5, which the start leaves open in sign,
-#     within 20 % or called open: set back to 0 alone, the record is explained as well); not
-#     the 3x cut, which this record's truth itself does not reach (`battery.py --ceiling`);
 #   - the rigid rig's offset NDE TDB of seed 803 (`--first-seed 801`): the offset named, its x
 #     within 20 %, its y (19.7 um beside 74.7, fitted 8 um: the start's cost is flat and rough
 #     between 0 and 25 um) within 20 % or called open;
@@ -124,7 +118,7 @@ fi
 housings="rigid_rotor_a dahl_ribbon 13 --set tdb.nde.contact_law.outer_race_mass_kg=0.3"
 housings+=" --set tdb.de.contact_law.outer_race_mass_kg=0.3"
 cases=("rigid_rotor_a clean 1" "rigid_rotor_a clearance_worn 4" "rigid_rotor_a sensor_offset 11"
-  "rigid_rotor_a race_inertia 15" "rigid_rotor_a clean 11"
+  "rigid_rotor_a clean 11"
   "rigid_rotor_a misalignment_friction 17"
   "$housings" "rigid_rotor_a friction_one_tdb 5 --set measurement.trigger_state=\"record_start\""
   "rigid_fourdof_c clean 1"
@@ -135,8 +129,7 @@ cases=("rigid_rotor_a clean 1" "rigid_rotor_a clearance_worn 4" "rigid_rotor_a s
   "rigid_fourdof_c flux_decay_b 409" "rigid_rotor_a chain_lag 12"
   "rigid_rotor_a declared_off 701" "rigid_fourdof_c declared_off 707"
   "rigid_rotor_a misalignment_friction 617" "rigid_rotor_a tdb_misalignment 603"
-  "rigid_rotor_a clean 802" "rigid_fourdof_c misalignment_friction 617"
-  "rigid_rotor_a tdb_misalignment 803" "rigid_fourdof_c clean 906" "rigid_fourdof_c clean 912")
+  "rigid_rotor_a clean 802" "rigid_rotor_a tdb_misalignment 803" "rigid_fourdof_c clean 906" "rigid_fourdof_c clean 912")
 for c in "${cases[@]}"; do
   read -r rig effect seed extra <<<"$c"
   run="${rig}_${effect}_$seed${extra:+_${extra//[^a-z0-9]/}}"
@@ -204,11 +197,7 @@ for case in sys.argv[4:]:
         # The pair and its values, the small y offset held to 30 % of its change.
         ("rigid_rotor_a", "217"): {"tdb.nde.misalignment.x_m": 0.2,
                                    "tdb.nde.misalignment.y_m": 0.3,
-                                   "tdb.nde.friction.coefficient": 0.2},
-        # The offset's y and the friction; its x (6.3 um of 57.8) within 20 % or called open.
-        ("rigid_fourdof_c", "617"): {"tdb.nde.misalignment.y_m": 0.2,
-                                     "tdb.de.friction.coefficient": 0.2,
-                                     "tdb.nde.misalignment.x_m": "open"}}
+                                   "tdb.nde.friction.coefficient": 0.2}}
     if effect == "misalignment_friction" and (rig, seed) in pair_values:
         want = pair_values[(rig, seed)]
         got = dict(line.split("=", 1) for c in fit["chosen"] for line in c.get("set", []))
@@ -216,9 +205,7 @@ for case in sys.argv[4:]:
         for key, tol in want.items():
             true = float(sets[key])
             base = declared[rig].value(key, {}) or 0.0
-            off = key not in got or abs(float(got[key]) - true) > \
-                (0.2 if tol == "open" else tol) * abs(true - base)
-            if off and not (tol == "open" and decided(fit, key) is False):
+            if key not in got or abs(float(got[key]) - true) > tol * abs(true - base):
                 problems.append(f"{key}: {got.get(key)} against {true} (declared {base}), "
                                 f"decided {decided(fit, key)}")
         if fit["verdict"] != "explained":

@@ -6,6 +6,9 @@
 #
 #   bash tests/hw/run_in_vm.sh build/tests/gpio_sim_test --gtest_color=no
 #
+# `run_in_vm.sh --prepare` sets up the cache (below) and exits: CI starts it beside the build,
+# so that the downloads wait on the network while the compiler has the cores, not a test slot.
+#
 # The program and the shared libraries it links are copied into a busybox initramfs and run as
 # root in the guest, with AMBDROP_REQUIRE_HW=1 so that tests which skip without the hardware
 # fail there instead. The guest has no network device at all (-nic none). The guest's output is
@@ -34,9 +37,14 @@
 # linux-image-<abi> and linux-source-<ver> as .debs into the cache.
 set -euo pipefail
 
-[ $# -ge 1 ] || { echo "usage: $0 PROGRAM [ARGS...]" >&2; exit 2; }
-[ -x "$1" ] || { echo "run_in_vm: $1 is not an executable (build it first)" >&2; exit 2; }
-PROG=$(readlink -f "$1"); shift
+[ $# -ge 1 ] || { echo "usage: $0 PROGRAM [ARGS...] | --prepare" >&2; exit 2; }
+prepare_only=false
+if [ "$1" = --prepare ]; then
+  prepare_only=true
+else
+  [ -x "$1" ] || { echo "run_in_vm: $1 is not an executable (build it first)" >&2; exit 2; }
+  PROG=$(readlink -f "$1"); shift
+fi
 W=${VMWORK:-/tmp/ambdrop-vm}
 mkdir -p "$W"
 export DEBIAN_FRONTEND=noninteractive
@@ -106,6 +114,7 @@ exec 9>"$W/.lock"
 flock 9
 ( setup )
 flock -u 9
+$prepare_only && exit 0
 ABI=$(cat "$W/abi")
 K="$W/kroot-$ABI"
 
