@@ -39,8 +39,10 @@
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <lcm/lcm-cpp.hpp>
@@ -462,6 +464,90 @@ TEST(LcmUdpmNetns, TwoProcessesEchoCurrentsAsSensorsAndAnswerATrigger) {
   RecordProperty("rtt_max_us", std::to_string(report.rtt_max_us));
   std::printf("udpm round trip over %d messages: median %.0f us, max %.0f us (%d warm-up pings)\n",
               kMessages, report.rtt_median_us, report.rtt_max_us, report.warmup_pings);
+}
+
+// --- Every thread a real-time loop's messages pass through runs real-time ----------------------
+
+/// What the namespace process found of its threads after RaiseIoThreads.
+struct ThreadsReport {
+  Outcome outcome = Outcome::kFail;
+  char message[512] = {};
+  int tasks = 0;       ///< this process's tasks besides its main thread
+  int not_raised = 0;  ///< of them, not SCHED_FIFO at the asked priority
+};
+
+/// Scheduling policy and real-time priority of task `tid` of this process (sched_getscheduler
+/// and sched_getparam take a thread id on Linux).
+std::pair<int, int> TaskPolicy(pid_t tid) {
+  sched_param param{};
+  const int policy = sched_getscheduler(tid);
+  if (policy < 0 || sched_getparam(tid, &param) != 0) return {-1, -1};
+  return {policy, param.sched_priority};
+}
+
+void RaiseInNamespace(ThreadsReport* out) {
+  Report report;
+  if (!EnterPrivateNetwork(&report) || !OnlyLoopback() || !LoopbackMulticast(&report)) {
+    out->outcome = report.outcome == Outcome::kFail ? Outcome::kSkip : report.outcome;
+    std::snprintf(out->message, sizeof(out->message), "%s", report.message);
+    return;
+  }
+  constexpr int kPriority = 10;
+  try {
+    LcmEndpointOptions options;
+    options.url = kUrl;
+    LcmEndpoint endpoint(options);
+    endpoint.Start();
+    const std::string refused = endpoint.RaiseIoThreads(kPriority);
+    if (!refused.empty()) {
+      out->outcome = Outcome::kSkip;
+      std::snprintf(out->message, sizeof(out->message),
+                    "SCHED_FIFO needs root or CAP_SYS_NICE here: %s", refused.c_str());
+      return;
+    }
+    for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
+      const pid_t tid = static_cast<pid_t>(std::stol(task.path().filename().string()));
+      if (tid == getpid()) continue;
+      ++out->tasks;
+      if (TaskPolicy(tid) != std::pair<int, int>{SCHED_FIFO, kPriority}) ++out->not_raised;
+    }
+    endpoint.Stop();
+    out->outcome = Outcome::kOk;
+  } catch (const std::exception& e) {
+    std::snprintf(out->message, sizeof(out->message), "LcmEndpoint over udpm: %s", e.what());
+  }
+}
+
+// LCM's udpm reads its socket in a thread of its own and hands each message to lcm_handle in
+// the endpoint's receive thread: the controller's answers pass through both. Raised with the
+// receive and publish threads only, a busy host held that reader back: `ambdrop hil` at 2 kHz
+// with --record beside 8 busy loops touched down while levitated in 4 runs of 5; with it raised
+// too, 0 of 6 (tests/cli/hil_lcm_netns.sh, docs/verification.md, session 44).
+TEST(LcmUdpmNetns, RaisedIoThreadsIncludeLcmsOwnReader) {
+  int channel[2];
+  ASSERT_EQ(pipe(channel), 0) << std::strerror(errno);
+  std::fflush(nullptr);
+  const pid_t child = fork();
+  ASSERT_GE(child, 0) << std::strerror(errno);
+  if (child == 0) {  // one thread here: every other task below is the endpoint's or LCM's
+    close(channel[0]);
+    ThreadsReport report;
+    RaiseInNamespace(&report);
+    _exit(WriteAll(channel[1], &report, sizeof(report)) ? 0 : 1);
+  }
+  close(channel[1]);
+  ThreadsReport report;
+  const bool got = ReadAll(channel[0], &report, sizeof(report), std::chrono::milliseconds(30000));
+  close(channel[0]);
+  if (!got) kill(child, SIGKILL);
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(got) << "the namespace process sent no report (exit status " << status << ")";
+  if (report.outcome == Outcome::kSkip) GTEST_SKIP() << report.message;
+  ASSERT_EQ(report.outcome, Outcome::kOk) << report.message;
+  // The receive thread, the publish thread and udpm's reader.
+  EXPECT_GE(report.tasks, 3);
+  EXPECT_EQ(report.not_raised, 0) << "of " << report.tasks << " threads";
 }
 
 }  // namespace

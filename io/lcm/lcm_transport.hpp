@@ -1,4 +1,6 @@
 #pragma once
+#include <sys/types.h>
+
 #include <array>
 #include <atomic>
 #include <chrono>
@@ -108,11 +110,11 @@ class LcmEndpoint {
   void Start();
   /// Publishes the records already pushed, then joins both threads. Idempotent.
   void Stop() noexcept;
-  /// Runs the receive and publish threads under SCHED_FIFO at `priority` (1-99), after
-  /// Start(), and, when the real-time loop is pinned to `loop_cpu` (>= 0), on the other CPUs. A
-  /// real-time loop's messages pass through them: left to the ordinary scheduler, a busy
-  /// machine holds the controller's answers back past the loop's watchdog. Returns an empty
-  /// string, or why the kernel refused.
+  /// Runs the receive and publish threads, and LCM's own reading thread, under SCHED_FIFO at
+  /// `priority` (1-99), after Start(), and, when the real-time loop is pinned to `loop_cpu`
+  /// (>= 0), on the other CPUs. A real-time loop's messages pass through them: left to the
+  /// ordinary scheduler, a busy machine holds the controller's answers back past the loop's
+  /// watchdog. Returns an empty string, or why the kernel refused.
   std::string RaiseIoThreads(int priority, int loop_cpu = -1);
   bool running() const noexcept { return running_; }
 
@@ -174,6 +176,9 @@ class LcmEndpoint {
 
   LcmEndpointOptions options_;
   std::unique_ptr<lcm::LCM> lcm_;
+  // LCM's own threads (udpm reads its socket in a thread of its own, which hands each message
+  // to lcm_handle): the tasks that appeared while lcm_ was created and subscribed.
+  std::vector<pid_t> lcm_library_tasks_;
   std::vector<std::uint8_t> sensors_buffer_;  ///< encoded sensor_readings_t (fixed size)
   std::vector<std::uint8_t> state_buffer_;    ///< encoded emulator_state_t (fixed size)
   std::vector<std::uint8_t> power_buffer_;    ///< encoded power_event_t (fixed size)

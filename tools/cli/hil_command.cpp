@@ -629,8 +629,9 @@ RegisteredCommand AddHilCommand(CLI::App& app) {
       ->check(kFinite & CLI::Range(0.0, 10000.0));
   hil_command->add_flag(
       "--lcm-io-fifo", options->lcm_io_fifo,
-      "With --controller lcm and SCHED_FIFO: run LCM's receive and publish threads SCHED_FIFO one "
-      "priority below the loop, off its CPU, so a busy host does not hold the controller's "
+      "With --controller lcm and SCHED_FIFO: run LCM's receive and publish threads, and udpm's "
+      "reading thread, SCHED_FIFO one priority below the loop, off its CPU, so a busy host does "
+      "not hold the controller's "
       "answers back (at 20 kHz they then fall under the kernel's RT throttling: slower)");
   hil_command->add_flag("--enforce-rt", options->enforce_rt,
                         "Fail if real-time scheduling, CPU pinning or memory locking is refused "
