@@ -422,26 +422,36 @@ void RunInNamespace(Report* report) {
   report->emulator_exit = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-TEST(LcmUdpmNetns, TwoProcessesEchoCurrentsAsSensorsAndAnswerATrigger) {
+/// Runs `body(&report)` in a forked child and returns the report it sends back through a pipe
+/// within `timeout`, or why none came.
+template <typename ChildReport, typename Body>
+::testing::AssertionResult ReportFromChild(Body body, ChildReport* report,
+                                           std::chrono::milliseconds timeout) {
   int channel[2];
-  ASSERT_EQ(pipe(channel), 0) << std::strerror(errno);
+  if (pipe(channel) != 0) return ::testing::AssertionFailure() << "pipe: " << std::strerror(errno);
   std::fflush(nullptr);  // nothing buffered is written twice by the child
   const pid_t child = fork();
-  ASSERT_GE(child, 0) << std::strerror(errno);
+  if (child < 0) return ::testing::AssertionFailure() << "fork: " << std::strerror(errno);
   if (child == 0) {
     close(channel[0]);
-    Report report;
-    RunInNamespace(&report);
-    _exit(WriteAll(channel[1], &report, sizeof(report)) ? 0 : 1);
+    ChildReport mine;
+    body(&mine);
+    _exit(WriteAll(channel[1], &mine, sizeof(mine)) ? 0 : 1);
   }
   close(channel[1]);
-  Report report;
-  const bool got = ReadAll(channel[0], &report, sizeof(report), std::chrono::milliseconds(90000));
+  const bool got = ReadAll(channel[0], report, sizeof(*report), timeout);
   close(channel[0]);
   if (!got) kill(child, SIGKILL);
   int status = 0;
   waitpid(child, &status, 0);
-  ASSERT_TRUE(got) << "the namespace process sent no report (exit status " << status << ")";
+  if (got) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure()
+         << "the namespace process sent no report (exit status " << status << ")";
+}
+
+TEST(LcmUdpmNetns, TwoProcessesEchoCurrentsAsSensorsAndAnswerATrigger) {
+  Report report;
+  ASSERT_TRUE(ReportFromChild(RunInNamespace, &report, std::chrono::milliseconds(90000)));
 
   if (report.outcome == Outcome::kSkip) GTEST_SKIP() << report.message;
   ASSERT_EQ(report.outcome, Outcome::kOk) << report.message;
@@ -532,25 +542,8 @@ void RaiseInNamespace(ThreadsReport* out) {
 // with --record beside 8 busy loops touched down while levitated in 4 runs of 5; with it raised
 // too, 0 of 6 (tests/cli/hil_lcm_netns.sh, docs/verification.md, session 44).
 TEST(LcmUdpmNetns, RaisedIoThreadsIncludeLcmsOwnReader) {
-  int channel[2];
-  ASSERT_EQ(pipe(channel), 0) << std::strerror(errno);
-  std::fflush(nullptr);
-  const pid_t child = fork();
-  ASSERT_GE(child, 0) << std::strerror(errno);
-  if (child == 0) {
-    close(channel[0]);
-    ThreadsReport report;
-    RaiseInNamespace(&report);
-    _exit(WriteAll(channel[1], &report, sizeof(report)) ? 0 : 1);
-  }
-  close(channel[1]);
   ThreadsReport report;
-  const bool got = ReadAll(channel[0], &report, sizeof(report), std::chrono::milliseconds(30000));
-  close(channel[0]);
-  if (!got) kill(child, SIGKILL);
-  int status = 0;
-  waitpid(child, &status, 0);
-  ASSERT_TRUE(got) << "the namespace process sent no report (exit status " << status << ")";
+  ASSERT_TRUE(ReportFromChild(RaiseInNamespace, &report, std::chrono::milliseconds(30000)));
   if (report.outcome == Outcome::kSkip) GTEST_SKIP() << report.message;
   ASSERT_EQ(report.outcome, Outcome::kOk) << report.message;
   // The receive thread, the publish thread and udpm's reader.

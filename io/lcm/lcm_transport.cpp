@@ -15,8 +15,10 @@
 #include <chrono>
 #include <climits>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <iterator>
 #include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
 #include <utility>
