@@ -136,8 +136,14 @@ struct Selection {
     /// A part not judged, where it departed as declared: its limit widened by the chosen
     /// model's own floor there (as AgreementLimitAfter widens the judged one's); else `limit`.
     double limit_after = 0.0;
+    /// The columns it compares, where it compares only some (the departing sensors).
+    std::vector<std::string> columns;
   };
   Part early;
+  /// The drop's start on the displacement channels that depart alone, each beyond a limit of
+  /// its own (start_channels.hpp), where the start as a whole agrees: what a sensor's own chain
+  /// does (a gain, a lag) shows there.
+  Part sensors;
   /// The same on the speeds alone (CostScope::kSpeeds: rotor and race speeds from the trigger
   /// to the end): what spins the races up or slows them shows there, smooth, after the first
   /// impacts whose bouncing the whole cost carries.

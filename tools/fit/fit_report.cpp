@@ -247,7 +247,8 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   // The parts the verdict looks at; the top-level numbers are the judged one's.
   json.Key("judged_on").String(s.judged_on);
   for (const auto& [name, part] :
-       {std::pair{"whole", &s.whole}, std::pair{"early", &s.early}, std::pair{"speeds", &s.speeds},
+       {std::pair{"whole", &s.whole}, std::pair{"early", &s.early},
+        std::pair{"sensors", &s.sensors}, std::pair{"speeds", &s.speeds},
         std::pair{"levitated", &s.levitated}, std::pair{"spectrum", &s.spectrum}}) {
     if (!part->compared) continue;
     json.Key(name).BeginObject();
@@ -259,6 +260,11 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     json.Key("agreement_limit").Number(part->limit);
     json.Key("agreement_limit_after")
         .Number(part->limit_after > 0 ? part->limit_after : part->limit);
+    if (!part->columns.empty()) {
+      json.Key("columns").BeginArray();
+      for (const std::string& column : part->columns) json.String(column);
+      json.EndArray();
+    }
     json.EndObject();
   }
   if (!s.closest.empty()) {
@@ -363,8 +369,12 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
   md += fmt::format(
       "Judged on {}: relative RMS residual {:.4g} before, {:.4g} after; the record's noise "
       "alone would leave {:.3g}, so the model error is {:.3g} before and {:.3g} after.\n\n",
-      s.judged_on == "early"    ? "the drop's start (every channel up to just after the first "
-                                  "impact), where it departs beyond its limit"
+      s.judged_on == "early" ? "the drop's start (every channel up to just after the first "
+                               "impact), where it departs beyond its limit"
+      : s.judged_on == "sensors"
+          ? "the drop's start on the sensors that depart alone (each displacement channel held to "
+            "a limit of its own: its noise and its widest move under the start's probes and "
+            "drawn jitters), where the start as a whole agrees"
       : s.judged_on == "speeds" ? "the speeds (rotor and races, from the trigger to the end), "
                                   "which depart further beyond their limit than the whole record"
       : s.judged_on == "levitated"
@@ -394,6 +404,7 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
   }
   for (const auto& [name, part] :
        {std::pair{"The whole record", &s.whole}, std::pair{"The drop's start", &s.early},
+        std::pair{"The drop's start on the departing sensors", &s.sensors},
         std::pair{"The speeds", &s.speeds},
         std::pair{"The levitated time (mean, 1X, 2X)", &s.levitated},
         std::pair{"The levitated currents' noise spectrum", &s.spectrum}}) {

@@ -108,7 +108,8 @@ MeasurementParams MeasurementFor(const MeasurementParams& measurement, CostScope
 
 RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& measurement,
                        const MeasuredRecord& record, const RecordRunOptions& run,
-                       std::size_t max_samples_per_channel, CostScope scope)
+                       std::size_t max_samples_per_channel, CostScope scope,
+                       const std::vector<bool>& compared)
     : declared_(declared),
       measurement_(MeasurementFor(measurement, scope)),
       record_(record),
@@ -156,6 +157,7 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
     const std::vector<double>& v = record.values[col];
     column_.push_back(col);
     range_.push_back(0.0);
+    if (!compared.empty() && !(c < compared.size() && compared[c])) continue;
     if (scope == CostScope::kSpeeds && !SpeedLike(ch.quantity)) continue;
     if (levitated && ch.quantity != MeasuredQuantity::kDisplacement && !CurrentLike(ch.quantity)) {
       continue;

@@ -75,9 +75,12 @@ class RecordCost {
  public:
   /// `max_samples_per_channel` thins the compared rows evenly (the cost of the linear algebra,
   /// not of the simulation, grows with it).
+  /// `compared`, if not empty, says which measurement channels the cost compares (the others
+  /// are run, not compared).
   RecordCost(const ModelParams& declared, const MeasurementParams& measurement,
              const MeasuredRecord& record, const RecordRunOptions& run,
-             std::size_t max_samples_per_channel = 3000, CostScope scope = CostScope::kWhole);
+             std::size_t max_samples_per_channel = 3000, CostScope scope = CostScope::kWhole,
+             const std::vector<bool>& compared = {});
 
   /// The residual vector of `params` (a copy of the declared ones with effects applied). A run
   /// that stops early scores every sample it did not reach as a full range off.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,8 +38,46 @@ double DisplacementNoiseMedian(const RecordCost& cost) {
   return MedianNoiseSigma(columns, last);
 }
 
+namespace {
+
+// Median of `v` (0 when empty).
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t h = v.size() / 2;
+  return v.size() % 2 == 1 ? v[h] : 0.5 * (v[h - 1] + v[h]);
+}
+
+// The start term channel by channel (StartSensitivity's `per_channel`), from each run's squared
+// moves per channel (runs [0, probes) the probes, [probes, fixed) the trigger state's axes in
+// pairs, the rest the jitter's draws): the largest probe, the axes in quadrature and the widest
+// draw. The widest, not the typical one: one channel alone follows a draw whose first impact
+// turns another way by that impact's whole move, where the sum over every channel averages it.
+// Empty without draws: the rule that reads it was measured where they run.
+std::vector<double> ChannelStartSensitivity(const std::vector<std::vector<double>>& sse,
+                                            std::size_t probes, std::size_t fixed) {
+  if (sse.size() <= fixed) return {};
+  const std::size_t channels = sse.front().size();
+  std::vector<double> out(channels, 0.0);
+  for (std::size_t c = 0; c < channels; ++c) {
+    double widest = 0.0;
+    for (std::size_t i = 0; i < probes; ++i) widest = std::max(widest, sse[i][c]);
+    double along_axes = 0.0;
+    for (std::size_t k = probes; k + 1 < fixed; k += 2) {
+      along_axes += std::max(sse[k][c], sse[k + 1][c]);
+    }
+    widest = std::max(widest, along_axes);
+    for (std::size_t i = fixed; i < sse.size(); ++i) widest = std::max(widest, sse[i][c]);
+    out[c] = std::sqrt(widest);
+  }
+  return out;
+}
+
+}  // namespace
+
 double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
-                        const Eigen::VectorXd& residual_before, int threads, int draws) {
+                        const Eigen::VectorXd& residual_before, int threads, int draws,
+                        std::vector<double>* per_channel) {
   const MeasurementParams& m = cost.measurement();
   const MeasuredRecord& r = cost.record();
   const ModelParams& params = cost.declared();
@@ -107,6 +146,7 @@ double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
           : 0;
   const std::size_t fixed = variants.size() + starts.size() + axes.size();
   std::vector<double> moved(fixed + static_cast<std::size_t>(jitter_draws), 0.0);
+  std::vector<std::vector<double>> moved_by_channel(moved.size());
   // A probe that stops scores its unreached samples a full range off: as the largest move, that
   // would widen the limit past any residual. A model a hair from the declared one that does not
   // run the record is as unfit to hold against it as the declared one that does not. (A drawn
@@ -135,17 +175,17 @@ double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
       r_i = cost.Residual(SimulateOnRecord(params, m, r, o));
     }
     moved[i] = OverallRms(cost, (r_i - residual_before).squaredNorm());
+    if (per_channel != nullptr) moved_by_channel[i] = cost.ChannelSse(r_i - residual_before);
   });
+  if (per_channel != nullptr) {
+    *per_channel =
+        ChannelStartSensitivity(moved_by_channel, variants.size() + starts.size(), fixed);
+  }
   // A typical draw's move: a few draws whose first impact turns another way move the
   // impact-force channels by their whole impulse, and an RMS over eight draws followed them
   // (0.0075 against a median of 0.0028 on the rigid truth rig, where it hid a TDB offset).
-  std::vector<double> drawn(moved.begin() + static_cast<std::ptrdiff_t>(fixed), moved.end());
-  double jitter = 0.0;
-  if (!drawn.empty()) {
-    std::sort(drawn.begin(), drawn.end());
-    const std::size_t h = drawn.size() / 2;
-    jitter = drawn.size() % 2 == 1 ? drawn[h] : 0.5 * (drawn[h - 1] + drawn[h]);
-  }
+  const double jitter =
+      Median(std::vector<double>(moved.begin() + static_cast<std::ptrdiff_t>(fixed), moved.end()));
   double worst = 0.0;
   for (std::size_t i = 0; i < variants.size() + starts.size(); ++i) {
     worst = std::max(worst, moved[i]);

@@ -3,6 +3,8 @@
 // record cannot resolve (effect_selection.hpp's agreement limit holds it).
 #include <Eigen/Core>
 
+#include <vector>
+
 #include "io/config/config_variants.hpp"
 #include "tools/fit/record_cost.hpp"
 
@@ -21,9 +23,13 @@ inline constexpr int kStartJitterDraws = 8;
 /// `residual_before`) moves when its start is shifted by what the record cannot resolve: the
 /// model floor's start term (Selection::start_sensitivity). On the drop's start (closed loop,
 /// the model's own levitated state) that includes the median move of `jitter_draws` runs with
-/// the rotor's jitter at the trigger drawn.
+/// the rotor's jitter at the trigger drawn. `per_channel`, if given, receives each measurement
+/// channel's widest move alone (a probe's, the axes' together or a draw's; 0 for a channel not
+/// compared), on the scale of sqrt(RecordCost::ChannelNoiseSse()); empty where no jitter was
+/// drawn.
 double StartSensitivity(const ConfigVariants& declared, const RecordCost& cost,
                         const Eigen::VectorXd& residual_before, int threads,
-                        int jitter_draws = kStartJitterDraws);
+                        int jitter_draws = kStartJitterDraws,
+                        std::vector<double>* per_channel = nullptr);
 
 }  // namespace ambdrop

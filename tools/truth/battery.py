@@ -75,8 +75,9 @@ from pathlib import Path
 #     3. cut: the residual above the noise floor of the part the verdict judges falls at least
 #        3x (>= MIN_CUT): fit.json's `judged_on` names it, the whole record, the drop's start
 #        (where the start departs; after the first impacts this rig's drop is chaotic, and its
-#        clean records leave 0.05 over the whole record, ten times the noise), the speeds or the
-#        levitated time before the trigger; older fit.json
+#        clean records leave 0.05 over the whole record, ten times the noise), the start's
+#        departing sensors (`sensors`), the speeds or the levitated time before the trigger;
+#        older fit.json
 #        files without it: rms_before.overall_above_noise / rms_after.overall_above_noise.
 #   A value the fit itself reports as not decided by the record (fit.json `"decided": false`)
 #   is marked "(open)" and still held to the rule; a record right but for such values is
