@@ -8,19 +8,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "drop_run.hpp"
-#include "effects.hpp"
+#include "generator_record.hpp"
 #include "io/config/config_variants.hpp"
-#include "io/files/measured_record_si.hpp"
-#include "record_files.hpp"
-#include "rig.hpp"
-#include "scratch_directory.hpp"
 #include "tools/fit/effect_selection.hpp"
 #include "tools/fit/effect_selection_internal.hpp"
 #include "tools/fit/record_cost.hpp"
@@ -45,15 +40,8 @@ Judged JudgeRecord(const std::string& effect, int seed) {
       ConfigVariants::Load(kSource + "/tests/truth/rigid_fourdof_c.toml", {});
   const ModelParams& declared = config.declared().params;
   const MeasurementParams m = config.declared().measurement.value();
-  ambdrop_truth::Rig rig =
-      ambdrop_truth::ReadRig(kSource + "/tools/truth/rigs/rigid_fourdof_c.json");
-  ambdrop_truth::ApplyEffect(effect, seed, &rig);
-  const ambdrop_truth::RunResult run = ambdrop_truth::RunDrop(rig, seed, {});
-  EXPECT_TRUE(run.finite);
-  const testing::ScratchDirectory dir("fit_start_channels");
-  const std::filesystem::path csv = dir.path() / "record.csv";
-  ambdrop_truth::WriteRecordCsv(csv, rig, run, ambdrop_truth::CsvUnits::kAcquisition);
-  const MeasuredRecord record = ReadMeasuredRecord(csv, m);
+  const MeasuredRecord record =
+      testing::GeneratorRecord("rigid_fourdof_c", effect, static_cast<std::uint64_t>(seed), m);
 
   RecordRunOptions options;
   options.step_s = 5e-6;  // the step the fit chooses for this rig's records
