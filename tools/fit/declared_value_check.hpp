@@ -21,7 +21,11 @@ namespace ambdrop {
 /// agrees with still agreeing), the value is not decided
 /// (ParameterEstimate::decided false, declared_rms the judged part's residual there). A value
 /// is set back alone: with the others refitted the record could only need it less, so no value
-/// is called open that a refit would need. One run per value; `threads` runs at once.
+/// is called open that a refit would need. Then each pair of values correlated in the fit's
+/// covariance (EffectFit::covariance) is moved along their valley until one is at its declared
+/// value; where that still explains the record, both are not decided alone and carry the one
+/// combination the record decides (ParameterEstimate::traded_with). One run per value and per
+/// direction of each correlated pair; `threads` runs at once.
 void MarkValuesTheRecordDoesNotNeed(
     const ConfigVariants& declared, const std::vector<Effect>& library, int threads,
     const std::function<bool(const ModelParams& params, double* judged_rms)>& explains,

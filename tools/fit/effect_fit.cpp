@@ -415,6 +415,7 @@ EffectFit FitEffects(const ConfigVariants& declared, const RecordCost& cost,
   }
 
   fit.values = at.Values(best_z);
+  fit.covariance.assign(cov.data(), cov.data() + cov.size());  // symmetric: row-major as stored
   for (std::size_t i = 0; i < flat.size(); ++i) {
     ParameterEstimate est;
     est.effect = flat[i].effect->name;

@@ -32,6 +32,14 @@ struct ParameterEstimate {
   /// The judged part's residual with this one value at its declared value and every other as
   /// fitted, where that still explains the record (declared_value_check.hpp); else NaN.
   double declared_rms = std::numeric_limits<double>::quiet_NaN();
+  /// Where the record decides this value only together with another (declared_value_check.hpp):
+  /// that value's name ("effect/parameter"), the slope of the record's valley between them
+  /// (d other / d this along it) and the one combination the record decides,
+  /// other - trade_slope * this, with its sigma. Empty `traded_with` otherwise.
+  std::string traded_with;
+  double trade_slope = std::numeric_limits<double>::quiet_NaN();
+  double trade_combination = std::numeric_limits<double>::quiet_NaN();
+  double trade_combination_sigma = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Whether a fitted value is one the record decides. Its sigma is a lower bound, so a value is
@@ -47,8 +55,11 @@ struct EffectFit {
   std::vector<std::string> effects;
   std::vector<ParameterEstimate> parameters;
   std::vector<std::vector<double>> values;  ///< per effect, its parameter values
-  double sse = 0.0;                         ///< squared norm of the residual vector
-  int evaluations = 0;                      ///< model runs
+  /// The parameters' covariance from the Jacobian at the optimum, in their own units, row-major
+  /// over `parameters`; NaN where a parameter sat at a bound or the normal matrix was singular.
+  std::vector<double> covariance;
+  double sse = 0.0;     ///< squared norm of the residual vector
+  int evaluations = 0;  ///< model runs
 };
 
 /// The `--set` overrides of the effects at `values` (per effect), in order.

@@ -71,6 +71,15 @@ void Parameters(JsonWriter& json, const EffectFit& fit, const std::string& effec
     if (std::isfinite(p.start_sigma)) json.Key("start_sigma").Number(p.start_sigma);
     json.Key("decided").Bool(p.decided);
     if (std::isfinite(p.declared_rms)) json.Key("declared_rms").Number(p.declared_rms);
+    if (!p.traded_with.empty()) {
+      // The record decides traded_with - slope * this (declared_value_check.hpp).
+      json.Key("trades_with").BeginObject(true);
+      json.Key("parameter").String(p.traded_with);
+      json.Key("slope").Number(p.trade_slope);
+      json.Key("combination").Number(p.trade_combination);
+      json.Key("combination_sigma").Number(p.trade_combination_sigma);
+      json.EndObject();
+    }
     json.EndObject();
   }
   json.EndObject();
@@ -439,6 +448,13 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
                   ? fmt::format(" (the rotor's jitter at the trigger {:.2g} of it)", p.start_sigma)
                   : "",
               p.decided ? ""
+              : !p.traded_with.empty()
+                  ? fmt::format(
+                        " (not decided alone: it trades with {} along a valley of the record's "
+                        "cost; what the record decides is {} {} {:.4g} x {} = {:.6g} ± {:.2g})",
+                        p.traded_with, p.traded_with, p.trade_slope <= 0.0 ? "+" : "-",
+                        std::abs(p.trade_slope), p.name, p.trade_combination,
+                        p.trade_combination_sigma)
               : std::isfinite(p.declared_rms)
                   ? fmt::format(
                         " (not decided: at its declared value, the rest as fitted, the record is "

@@ -146,6 +146,10 @@ NOT_COMPARED_LEAVES = SWITCH_LEAVES | {"position_m", "mass_kg", "beta_per_m", "t
                                        "upper_hardening_N", "upper_hardening_rate_per_m",
                                        "lower_hardening_N", "lower_hardening_rate_per_m"}
 
+# A fit parameter -> the leaf of the key it sets, where the two differ (fit.json names the
+# parameter; the truth names the key).
+KEY_OF_PARAMETER = {"filter_time_constant_s": "cutoff_Hz"}
+
 # The fit's effect names -> the --set key patterns they write ("*" = every item).
 EFFECT_NAME_KEYS = {
     "tdb_misalignment": ["tdb.{}.misalignment.x_m", "tdb.{}.misalignment.y_m"],
@@ -499,6 +503,8 @@ def score(record, truth, fit, declared):
     texts = []
     open_leaves = {name for c in value_sources for name, p in c.get("parameters", {}).items()
                    if isinstance(p, dict) and p.get("decided") is False}
+    # A parameter that sets a key of another name: the lag's filter time constant is its cutoff.
+    open_leaves |= {KEY_OF_PARAMETER[name] for name in open_leaves if name in KEY_OF_PARAMETER}
     for k, v in truth_pairs:
         if leaf(k) in NOT_COMPARED_LEAVES or k not in chosen_values:
             continue
