@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "io/config/config_variants.hpp"
+#include "rt_core/four_dof_params.hpp"
+#include "rt_core/tdb_params.hpp"
 #include "test_configs.hpp"
 #include "tools/fit/declared_value_check.hpp"
 #include "tools/fit/effect_fit.hpp"
@@ -151,6 +153,53 @@ TEST_F(FitValueTrades, ValuesTheRecordNeedsBothOfStayDecided) {
     EXPECT_TRUE(p.decided) << p.name;
     EXPECT_TRUE(p.traded_with.empty()) << p.name;
   }
+}
+
+// A law the model lacks has no declared value to set back to: a Dahl ribbon's slipping
+// stiffness that the 4-DOF rig's drop leaves open (seed 613: 8.8e5 +- 5.6e4 N/m fitted, truth
+// 3e5) while it holds the threshold to 2 %. Moved to the edge of what its sigma would call
+// decided (half and 1.5 times it), the record is still explained: it is open, and says where.
+TEST_F(FitValueTrades, ALawsValueTheRecordExplainsAsWellAtItsEdgeIsOpen) {
+  const Effect* dahl = nullptr;
+  for (const Effect& e : library_) {
+    if (e.name == "ribbon_dry_friction:nde") dahl = &e;
+  }
+  ASSERT_NE(dahl, nullptr) << "the 4-DOF rig has no NDE Dahl ribbon candidate";
+  ASSERT_TRUE(std::isnan(dahl->parameters[1].declared));
+  const std::vector<double> fitted = {229.8, 8.79e5, 3.77e-4};
+  const auto ribbon = [](const ModelParams& params) {
+    for (const TdbParams& t : params.tdbs) {
+      if (t.name == "nde") return t.four_dof().dahl;
+    }
+    return DahlRibbonParams{};
+  };
+  // The record: the threshold within 5 %, the stiffness anywhere in a decade around 3e5 N/m.
+  const auto explains = [&](const ModelParams& params, double* rms) {
+    const DahlRibbonParams d = ribbon(params);
+    *rms = std::abs(d.slipping_threshold_N - fitted[0]) / fitted[0];
+    return *rms < 0.05 && d.slipping_stiffness_N_per_m > 1e5 && d.slipping_stiffness_N_per_m < 1e6;
+  };
+  EffectFit fit;
+  fit.effects = {dahl->name};
+  fit.values = {fitted};
+  for (std::size_t i = 0; i < fitted.size(); ++i) {
+    ParameterEstimate p;
+    p.effect = dahl->name;
+    p.name = dahl->parameters[i].name;
+    p.value = fitted[i];
+    p.sigma = 0.05 * fitted[i];  // each decided by its sigma alone
+    fit.parameters.push_back(p);
+  }
+  // Uncorrelated: each moved alone.
+  fit.covariance.assign(9, 0.0);
+  for (std::size_t i = 0; i < 3; ++i) fit.covariance[4 * i] = std::pow(fit.parameters[i].sigma, 2);
+  MarkValuesTheRecordDoesNotNeed(declared_, library_, 1, explains, &fit);
+  EXPECT_TRUE(fit.parameters[0].decided) << "the threshold, held to 5 %";
+  EXPECT_FALSE(fit.parameters[1].decided) << "the stiffness, explained from 1e5 to 1e6";
+  EXPECT_DOUBLE_EQ(fit.parameters[1].explained_at, 0.5 * fitted[1]);
+  // The travel the record ignores altogether: open at its first edge.
+  EXPECT_FALSE(fit.parameters[2].decided);
+  EXPECT_DOUBLE_EQ(fit.parameters[2].explained_at, 0.5 * fitted[2]);
 }
 
 }  // namespace

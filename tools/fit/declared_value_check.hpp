@@ -24,8 +24,12 @@ namespace ambdrop {
 /// is called open that a refit would need. Then each pair of values correlated in the fit's
 /// covariance (EffectFit::covariance) is moved along their valley until one is at its declared
 /// value; where that still explains the record, both are not decided alone and carry the one
-/// combination the record decides (ParameterEstimate::traded_with). One run per value and per
-/// direction of each correlated pair; `threads` runs at once.
+/// combination the record decides (ParameterEstimate::traded_with). A value with no declared
+/// one is moved to each edge of what ParameterDecided calls decided, its most correlated
+/// partner following; where that still explains the record it is not decided either
+/// (ParameterEstimate::explained_at). One run per value, per direction of each correlated pair
+/// and per edge (12 along a partner's range where the covariance leaves it out); `threads` runs
+/// at once.
 void MarkValuesTheRecordDoesNotNeed(
     const ConfigVariants& declared, const std::vector<Effect>& library, int threads,
     const std::function<bool(const ModelParams& params, double* judged_rms)>& explains,

@@ -32,6 +32,12 @@ struct ParameterEstimate {
   /// The judged part's residual with this one value at its declared value and every other as
   /// fitted, where that still explains the record (declared_value_check.hpp); else NaN.
   double declared_rms = std::numeric_limits<double>::quiet_NaN();
+  /// For a value with no declared one to set it back to (a law the model lacks): a value at
+  /// the edge of what ParameterDecided calls decided (half or 1.5 times it for a size, a
+  /// quarter of its range away for any other number), moved along its valley with its most
+  /// correlated partner, where that still explains the record (declared_value_check.hpp); NaN
+  /// where neither edge does.
+  double explained_at = std::numeric_limits<double>::quiet_NaN();
   /// Where the record decides this value only together with another (declared_value_check.hpp):
   /// that value's name ("effect/parameter"), the slope of the record's valley between them
   /// (d other / d this along it) and the one combination the record decides,

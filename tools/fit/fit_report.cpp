@@ -71,6 +71,7 @@ void Parameters(JsonWriter& json, const EffectFit& fit, const std::string& effec
     if (std::isfinite(p.start_sigma)) json.Key("start_sigma").Number(p.start_sigma);
     json.Key("decided").Bool(p.decided);
     if (std::isfinite(p.declared_rms)) json.Key("declared_rms").Number(p.declared_rms);
+    if (std::isfinite(p.explained_at)) json.Key("explained_at").Number(p.explained_at);
     if (!p.traded_with.empty()) {
       // The record decides traded_with - slope * this (declared_value_check.hpp).
       json.Key("trades_with").BeginObject(true);
@@ -448,6 +449,12 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
                   ? fmt::format(" (the rotor's jitter at the trigger {:.2g} of it)", p.start_sigma)
                   : "",
               p.decided ? ""
+              : std::isfinite(p.explained_at)
+                  ? fmt::format(
+                        " (not decided: at {:.4g}, with its most correlated value following, the "
+                        "record is explained as well; the model runs with it, but it measures "
+                        "nothing)",
+                        p.explained_at)
               : !p.traded_with.empty()
                   ? fmt::format(
                         " (not decided alone: it trades with {} along a valley of the record's "
