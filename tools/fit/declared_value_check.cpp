@@ -105,6 +105,12 @@ void MarkValuesTheRecordDoesNotNeed(
   const auto cov = [&](std::size_t a, std::size_t b) {
     return have_covariance ? fit->covariance[a * n + b] : kNaN;
   };
+  // |rho| of two values, NaN where the covariance leaves either out.
+  const auto correlation = [&](std::size_t a, std::size_t b) {
+    const double caa = cov(a, a), cbb = cov(b, b), cab = cov(a, b);
+    return caa > 0.0 && cbb > 0.0 && std::isfinite(cab) ? std::abs(cab) / std::sqrt(caa * cbb)
+                                                        : kNaN;
+  };
   std::vector<Item> all;  // every value, as (effect, index, estimate)
   for (std::size_t e = 0, k = 0; e < effects.size(); ++e) {
     for (std::size_t i = 0; i < effects[e]->parameters.size(); ++i, ++k) all.push_back({e, i, k});
@@ -122,11 +128,9 @@ void MarkValuesTheRecordDoesNotNeed(
       const EffectParameter& pb = effects[b.effect]->parameters[b.index];
       if (pb.periodic || pb.quantum > 0.0 || !(pb.upper > pb.lower)) continue;
       const std::size_t ia = items[a].estimate, ib = b.estimate;
-      const double caa = cov(ia, ia), cbb = cov(ib, ib), cab = cov(ia, ib);
-      if (caa > 0.0 && cbb > 0.0 && std::isfinite(cab)) {
-        if (std::abs(cab) >= kTradeCorrelation * std::sqrt(caa * cbb)) {
-          trades.push_back({a, b, cab / caa});
-        }
+      const double rho = correlation(ia, ib);
+      if (std::isfinite(rho)) {
+        if (rho >= kTradeCorrelation) trades.push_back({a, b, cov(ia, ib) / cov(ia, ia)});
       } else if (b.effect == items[a].effect) {
         trades.push_back({a, b, kNaN});
       }
@@ -207,18 +211,16 @@ void MarkValuesTheRecordDoesNotNeed(
     std::optional<Item> partner;
     double slope = 0.0, best = kTradeCorrelation;
     for (const Item& b : all) {
-      const double caa = cov(a.estimate, a.estimate), cbb = cov(b.estimate, b.estimate);
-      const double cab = cov(a.estimate, b.estimate);
-      if (b.estimate == a.estimate || !(caa > 0.0 && cbb > 0.0 && std::isfinite(cab))) continue;
       const EffectParameter& pb = effects[b.effect]->parameters[b.index];
-      if (pb.periodic || pb.quantum > 0.0) continue;
-      const double rho = std::abs(cab) / std::sqrt(caa * cbb);
-      if (rho >= best) best = rho, partner = b, slope = cab / caa;
+      if (b.estimate == a.estimate || pb.periodic || pb.quantum > 0.0) continue;
+      const double rho = correlation(a.estimate, b.estimate);
+      if (rho >= best) {
+        best = rho, partner = b;
+        slope = cov(a.estimate, b.estimate) / cov(a.estimate, a.estimate);
+      }
     }
-    const bool size = p.log_scale || p.magnitude;
-    for (const double to : size ? std::vector<double>{0.5 * v, 1.5 * v}
-                                : std::vector<double>{v - 0.25 * (p.upper - p.lower),
-                                                      v + 0.25 * (p.upper - p.lower)}) {
+    const double width = DecidedHalfWidth(p, v);
+    for (const double to : {v - width, v + width}) {
       if (to >= p.lower && to <= p.upper && to != v) edges.push_back({a, to, partner, slope});
     }
   }

@@ -203,12 +203,18 @@ std::vector<double> InfluenceStart(const ConfigVariants& declared, const RecordC
 
 }  // namespace
 
+double DecidedHalfWidth(const EffectParameter& p, double value) {
+  if (p.log_scale || p.magnitude) return 0.5 * std::abs(value);
+  const double range = p.periodic ? 2.0 * std::numbers::pi : p.upper - p.lower;
+  return 0.25 * range;
+}
+
 bool ParameterDecided(const EffectParameter& p, double value, double sigma, bool at_bound) {
   if (at_bound) return true;
   if (!std::isfinite(sigma)) return p.quantum > 0.0;
-  if (p.log_scale || p.magnitude) return sigma < 0.5 * std::abs(value);
-  const double range = p.periodic ? 2.0 * std::numbers::pi : p.upper - p.lower;
-  return !(range > 0.0) || sigma < 0.25 * range;
+  const double width = DecidedHalfWidth(p, value);
+  if (p.log_scale || p.magnitude) return sigma < width;
+  return !(width > 0.0) || sigma < width;
 }
 
 std::vector<std::string> EffectOverrides(const std::vector<const Effect*>& effects,

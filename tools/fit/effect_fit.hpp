@@ -57,6 +57,11 @@ struct ParameterEstimate {
 /// truth rig's Dahl ribbon records: slipping stiffness 3.3e3 +- 1.8e6, 5.1e4 +- 8.0e4 N/m.
 bool ParameterDecided(const EffectParameter& p, double value, double sigma, bool at_bound);
 
+/// The sigma below which ParameterDecided calls `value` decided (half the value for a size, a
+/// quarter of the range for any other number): also how far a value is moved to ask whether
+/// the record explains it as well there (declared_value_check.hpp).
+double DecidedHalfWidth(const EffectParameter& p, double value);
+
 struct EffectFit {
   std::vector<std::string> effects;
   std::vector<ParameterEstimate> parameters;
