@@ -124,6 +124,11 @@ JitterDraws DrawJitter(const RecordCost& cost, const RecordCost& judged, double 
   return d;
 }
 
+JitterDraws DrawJitterForMode(const RecordCost& cost, const RecordCost& judged, int max_draws,
+                              int threads) {
+  return DrawJitter(cost, judged, -std::numeric_limits<double>::infinity(), max_draws, threads);
+}
+
 SimulatedRecord RunDraw(const RecordCost& cost, const JitterDraws& d, int run) {
   RecordRunOptions o = cost.run_options();
   o.jitter_sigma_m = d.jitter_sigma_m;

@@ -63,6 +63,15 @@ JitterDraws DrawJitter(const RecordCost& cost, const RecordCost& judged, double 
                        int max_draws, int threads, bool match_modes = true,
                        double extend_within = 0.0);
 
+/// DrawJitter that stops at a run in the record's drop mode only, not at a run that agrees on
+/// `judged` (its residuals are still kept: `closest_rms`): whether any of `max_draws` runs
+/// reaches the record's mode. Setting an effect aside because its model never reaches that mode
+/// needs every run looked at: on the rigid truth rig's race drag of seed 14 a run of the fitted
+/// drag agreed on the speeds without whirling, the draws stopped there at 20 of 64, and the
+/// record's race drag was called `unexplained`.
+JitterDraws DrawJitterForMode(const RecordCost& cost, const RecordCost& judged, int max_draws,
+                              int threads);
+
 /// Run `run` (1-based) of draws `d` made with the controller's noise (not from an estimate),
 /// again, over `cost`'s span: a draw judged on the drop's start, run to the record's end.
 SimulatedRecord RunDraw(const RecordCost& cost, const JitterDraws& d, int run);

@@ -246,7 +246,7 @@ void SetAsideEffectOutsideTheRecordsMode(const ConfigVariants& declared, const R
   const ModelParams params = FittedParams(declared, library, s->chosen_fit);
   const RecordCost chosen_cost(params, cost.measurement(), cost.record(), cost.run_options());
   const JitterDraws j =
-      DrawJitter(chosen_cost, judged, s->limit_after, FittedJitterDraws(rules), rules.threads);
+      DrawJitterForMode(chosen_cost, judged, FittedJitterDraws(rules), rules.threads);
   if (!j.ran || !j.mode_differs || j.first_match > 0) return;
   s->reason = fmt::format(
       "the declared model agrees with the drop's start and departs after it {} ({:.3g}, limit "
