@@ -39,14 +39,22 @@ double DisplacementRms(const MeasuredRecord& r, const MeasurementParams& m,
   return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : NAN;
 }
 
-TEST(JitterDraws, TheControllerAnsweringNoiseJittersTheRotorAndEachSeedIsOneDraw) {
-  // The independent rigid rig as ambdrop declares it (closed loop: a PID at 10 kHz).
-  const LoadedConfig rig =
-      LoadConfig(std::string(AMBDROP_SOURCE_DIR) + "/tests/truth/rigid_rotor_a.toml",
-                 {"simulation.duration_s=0.11"});
+// The independent rigid rig as ambdrop declares it (closed loop: a PID at 10 kHz), 0.11 s.
+LoadedConfig RigidRig() {
+  return LoadConfig(std::string(AMBDROP_SOURCE_DIR) + "/tests/truth/rigid_rotor_a.toml",
+                    {"simulation.duration_s=0.11"});
+}
+
+// Its own record at 20 kHz, with the config's sensor noise.
+SyntheticMeasurement RecordOf(const LoadedConfig& rig) {
   MeasureOptions options;
   options.rate_Hz = 20000.0;
-  const SyntheticMeasurement made = MakeMeasuredRecord(rig.params, options);
+  return MakeMeasuredRecord(rig.params, options);
+}
+
+TEST(JitterDraws, TheControllerAnsweringNoiseJittersTheRotorAndEachSeedIsOneDraw) {
+  const LoadedConfig rig = RigidRig();
+  const SyntheticMeasurement made = RecordOf(rig);
   const MeasurementParams& m = made.measurement;
   const SimulatedRecord quiet = SimulateOnRecord(rig.params, m, made.record, {});
   ASSERT_TRUE(quiet.closed_loop);
@@ -92,12 +100,8 @@ TEST(JitterDraws, TheControllerAnsweringNoiseJittersTheRotorAndEachSeedIsOneDraw
 // record), so DrawJitter stops at the first batch; the search for the mode goes through all
 // of them (the model's drop is the record's: no run counts as a match where the modes agree).
 TEST(JitterDraws, TheSearchForTheRecordsModeLooksAtEveryDrawAllowed) {
-  const LoadedConfig rig =
-      LoadConfig(std::string(AMBDROP_SOURCE_DIR) + "/tests/truth/rigid_rotor_a.toml",
-                 {"simulation.duration_s=0.11"});
-  MeasureOptions options;
-  options.rate_Hz = 20000.0;
-  const SyntheticMeasurement made = MakeMeasuredRecord(rig.params, options);
+  const LoadedConfig rig = RigidRig();
+  const SyntheticMeasurement made = RecordOf(rig);
   const RecordCost cost(rig.params, made.measurement, made.record, {});
   const double before = OverallRms(cost, cost.Residual(rig.params).squaredNorm());
   ASSERT_GT(before, 0.0);
