@@ -13,17 +13,8 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kRigid = R"(
-[rotor]
-model = "rigid"
-[rotor.rigid]
-mass_kg = 10.0
-polar_inertia_kg_m2 = 0.01
-transverse_inertia_kg_m2 = 0.1
-centre_of_mass_m = 0.2
-[controller]
-kind = "internal_linear"
-)";  // [controller] on line 9
+const std::string kRigid = testing::kSmallRigidRotor +
+                           "[controller]\nkind = \"internal_linear\"\n";  // [controller] on line 9
 
 const std::string kSection = "[[controller.linear.sections]]\n";
 

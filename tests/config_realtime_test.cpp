@@ -12,15 +12,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kRigid = R"(
-[rotor]
-model = "rigid"
-[rotor.rigid]
-mass_kg = 10.0
-polar_inertia_kg_m2 = 0.01
-transverse_inertia_kg_m2 = 0.1
-centre_of_mass_m = 0.2
-)";
+const std::string& kRigid = testing::kSmallRigidRotor;
 
 using testing::ConfigErrorOf;
 
