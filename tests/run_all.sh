@@ -53,7 +53,7 @@ release() {
 # No -Werror: GCC 12 warns falsely under the sanitizers, and the Release job holds the tree to
 # GCC's warnings. The same tree builds the libFuzzer targets of every decoder and runs them (the
 # corpus and past crashes replayed, then each target fuzzed for AMBDROP_FUZZ_SECONDS, 5 s, two
-# at a time; tests/fuzz/README.md runs them longer): a tree of their own compiled rt_core, io
+# at a time; tests/fuzz/README.md runs them longer): a tree of their own would compile rt_core, io
 # and controller_if a third time (~190 s of CI).
 asan() {
   cmake -S . -B build-asan -G Ninja -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=Debug \
