@@ -1,11 +1,11 @@
-// The generator's rigs made in session 50, after the fit's rules, to try them on rigs none was
-// made on (tools/truth/rigs/rigid_rotor_e.json: contact-law TDBs, a declared exponential power
-// loss, windage; rigid_fourdof_f.json: 4-DOF TDBs, a slew-limited ramp, a viscous coast-down),
-// and ambdrop's translations of them (tests/truth/<rig>.toml), as a user meets them: every
-// hidden effect's and every declared_off entry's --set lines load on the translation, and the
-// two codes hold the rotor with the same currents: each AMB carries its share of the weight
-// (moments about the centre of mass), through the differential electromagnet law at the
-// centre, the generator's own statics against ambdrop's.
+// The generator's rigid rigs and ambdrop's translations of them (tests/truth/<rig>.toml), as a
+// user meets them: every hidden effect's and every declared_off entry's --set lines load on the
+// translation (no unknown key, a value in range), and the two codes hold the rotor with the same
+// currents: each AMB carries its share of the weight (moments about the centre of mass),
+// through the differential electromagnet law at the centre, the generator's own statics against
+// ambdrop's. rigid_fourdof_c is the 4-DOF rig (its races' sag: truth_fourdof_translation_test);
+// rigid_rotor_e and rigid_fourdof_f were made in session 50, after the fit's rules, to try
+// them on rigs none was made on.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -22,21 +22,21 @@
 #include "rig.hpp"
 #include "rt_core/model.hpp"
 
-namespace ambdrop::truth_later_rigs_translation_test {
+namespace ambdrop::truth_rig_translations_test {
 namespace {
 
 const std::string kSource = AMBDROP_SOURCE_DIR;
 
-struct LaterRig {
+struct TranslatedRig {
   std::string name;
   std::size_t declared_entries;  // the sheet's numbers a declared_off draw may move
 };
 
-std::ostream& operator<<(std::ostream& out, const LaterRig& r) {
+std::ostream& operator<<(std::ostream& out, const TranslatedRig& r) {
   return out << r.name;
 }
 
-class TruthLaterRigTranslation : public ::testing::TestWithParam<LaterRig> {
+class TruthRigTranslation : public ::testing::TestWithParam<TranslatedRig> {
  protected:
   std::string Rig() const { return kSource + "/tools/truth/rigs/" + GetParam().name + ".json"; }
   std::string Config() const { return kSource + "/tests/truth/" + GetParam().name + ".toml"; }
@@ -54,7 +54,7 @@ std::string LoadError(const std::string& config, const ambdrop_truth::Truth& t) 
   return "";
 }
 
-TEST_P(TruthLaterRigTranslation, EveryEffectAndEveryDeclaredNumberLoads) {
+TEST_P(TruthRigTranslation, EveryEffectAndEveryDeclaredNumberLoads) {
   const ambdrop_truth::Rig declared = ambdrop_truth::ReadRig(Rig());
   for (const std::string& kind : ambdrop_truth::EffectKinds()) {
     SCOPED_TRACE(kind);
@@ -74,7 +74,7 @@ TEST_P(TruthLaterRigTranslation, EveryEffectAndEveryDeclaredNumberLoads) {
   }
 }
 
-TEST_P(TruthLaterRigTranslation, BothCodesHoldTheRotorWithTheSameCurrents) {
+TEST_P(TruthRigTranslation, BothCodesHoldTheRotorWithTheSameCurrents) {
   const ambdrop_truth::Rig rig = ambdrop_truth::ReadRig(Rig());
   std::array<std::array<double, 2>, 2> held{};
   ambdrop_truth::EquilibriumState(rig, &held);
@@ -98,16 +98,18 @@ TEST_P(TruthLaterRigTranslation, BothCodesHoldTheRotorWithTheSameCurrents) {
   EXPECT_NEAR(carried_N / (rig.rotor.mass_kg * rig.gravity_m_s2), 1.0, 1e-9);
 }
 
-// The entries: the rigid rotor's 4, the coast-down's one loss, the power loss's one number,
+// The entries: the rigid rotor's 4, the coast-down's one loss (none on c), the power loss's
+// numbers (c: its hold and time constant),
 // per AMB 4 (constant, bias, gap, station), per sensor 5 (station, gain and offset per axis),
 // the PID's 7; per contact-law TDB 9 (the inner-race radius given), per 4-DOF TDB 15 (its
 // contact's two numbers, both races' masses, the bearing's and the ribbon's stiffness and
 // damping in place of the linear contact's two).
 INSTANTIATE_TEST_SUITE_P(
-    Rigs, TruthLaterRigTranslation,
-    ::testing::Values(LaterRig{"rigid_rotor_e", 4 + 1 + 1 + 8 + 10 + 7 + 18},
-                      LaterRig{"rigid_fourdof_f", 4 + 1 + 1 + 8 + 10 + 7 + 30}),
-    [](const ::testing::TestParamInfo<LaterRig>& info) { return info.param.name; });
+    Rigs, TruthRigTranslation,
+    ::testing::Values(TranslatedRig{"rigid_fourdof_c", 4 + 0 + 2 + 8 + 10 + 7 + 30},
+                      TranslatedRig{"rigid_rotor_e", 4 + 1 + 1 + 8 + 10 + 7 + 18},
+                      TranslatedRig{"rigid_fourdof_f", 4 + 1 + 1 + 8 + 10 + 7 + 30}),
+    [](const ::testing::TestParamInfo<TranslatedRig>& info) { return info.param.name; });
 
 }  // namespace
-}  // namespace ambdrop::truth_later_rigs_translation_test
+}  // namespace ambdrop::truth_rig_translations_test
