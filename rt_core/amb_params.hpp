@@ -30,6 +30,7 @@ struct ElectromagnetParams {
   /// k (N m^2/A^2) as a rig sheet gives it; 0: from the geometry, mu0 N^2 A cos(alpha) / 4.
   /// Last, so that brace-initialised geometries keep their order.
   double constant_N_m2_per_A2 = 0.0;
+  friend bool operator==(const ElectromagnetParams&, const ElectromagnetParams&) = default;
 };
 
 /// What makes the bias flux of a current-driven AMB: the amplifiers (the coils carry I0 +- i,
@@ -56,6 +57,7 @@ struct FluxDecayParams {
   /// Slew-limited ramp of a linearised-law AMB with an electromagnet bias: the coils' bias
   /// current I0 (the law itself does not declare it; the electromagnet law's geometry does).
   double bias_current_A = 0.0;
+  friend bool operator==(const FluxDecayParams&, const FluxDecayParams&) = default;
 };
 
 /// Control currents of one radial AMB at one instant (linear interpolation in between).
@@ -63,6 +65,7 @@ struct CurrentSample {
   double time_s = 0.0;
   double current_x_A = 0.0;
   double current_y_A = 0.0;
+  friend bool operator==(const CurrentSample&, const CurrentSample&) = default;
 };
 
 struct AmbParams {
@@ -84,6 +87,7 @@ struct AmbParams {
   AmbBiasSource bias_source = AmbBiasSource::kElectromagnet;  ///< current-driven laws
   FluxDecayParams flux_decay;
   std::string sensor;  ///< sensor plane that feeds this AMB's controller (default: same name)
+  friend bool operator==(const AmbParams&, const AmbParams&) = default;
 };
 
 }  // namespace ambdrop

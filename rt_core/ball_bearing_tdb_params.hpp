@@ -10,6 +10,7 @@ namespace ambdrop {
 struct LineContactParams {
   double youngs_modulus_Pa = 0.0;  ///< E (the paper: the shaft's)
   double length_m = 0.0;           ///< L, contact length along the axis
+  friend bool operator==(const LineContactParams&, const LineContactParams&) = default;
 };
 
 enum class SlipFrictionLaw {
@@ -39,6 +40,7 @@ struct SlipFrictionParams {
   double kinetic_coefficient = 0.0;  ///< mu_d
   double stick_speed_m_s = 0.0;      ///< half-width of the "vs = vi" band
   SlipSpeeds slip_speeds = SlipSpeeds::kContactPoint;
+  friend bool operator==(const SlipFrictionParams&, const SlipFrictionParams&) = default;
 };
 
 /// Ball bearing of Z discrete balls, Chen 2019 (seed 002) Eq. (13)-(19) (Harris):
@@ -61,6 +63,7 @@ struct DiscreteBallParams {
   double radial_clearance_m = 0.0;       ///< per-ball radial play before a ball is loaded
   double damping_N_s_per_m = 0.0;        ///< Cb, linear, between the races (Fig. 2)
   bool cage_rotation = true;             ///< balls orbit at the cage speed (false: fixed)
+  friend bool operator==(const DiscreteBallParams&, const DiscreteBallParams&) = default;
 };
 
 /// Support of the outer race in the housing, Chen 2019 (seed 002) Fig. 16: Ks, Cs (the paper
@@ -70,6 +73,7 @@ struct BearingSupportParams {
   double stiffness_N_per_m = 0.0;  ///< Ks
   double damping_N_s_per_m = 0.0;  ///< Cs
   double outer_race_mass_kg = 0.0;
+  friend bool operator==(const BearingSupportParams&, const BearingSupportParams&) = default;
 };
 
 /// The whole seed-002 TDB: journal / inner race (line contact, friction), inner race (mass, x,
@@ -81,6 +85,7 @@ struct BallBearingTdbParams {
   SlipFrictionParams friction;
   DiscreteBallParams bearing;
   BearingSupportParams support;
+  friend bool operator==(const BallBearingTdbParams&, const BallBearingTdbParams&) = default;
 };
 
 }  // namespace ambdrop

@@ -10,6 +10,7 @@ namespace ambdrop {
 struct RaceParams {
   double mass_kg = 0.0;
   double polar_inertia_kg_m2 = 0.0;
+  friend bool operator==(const RaceParams&, const RaceParams&) = default;
 };
 
 /// A deep-groove ball bearing between two races, each ball a Hertz point contact through the
@@ -32,6 +33,7 @@ struct BallBearingRowParams {
   double diametric_clearance_m = 0.0;               ///< Pd (Table 2)
   double viscous_drag_N_m_s = 0.0;                  ///< c_v, friction moment per relative speed
   double palmgren_f1 = 0.0;                         ///< f1 of the load moment f1 F dm
+  friend bool operator==(const BallBearingRowParams&, const BallBearingRowParams&) = default;
 };
 
 enum class CatcherMount {
@@ -45,6 +47,7 @@ struct MetalRubberRingParams {
   double house_mass_kg = 0.0;      ///< m_o (Table 1: 0.35 kg)
   double stiffness_N_per_m = 0.0;  ///< Krr
   double damping_N_s_per_m = 0.0;  ///< Crr
+  friend bool operator==(const MetalRubberRingParams&, const MetalRubberRingParams&) = default;
 };
 
 /// Catcher bearing: inner race hit by the journal (impact function), one ball bearing to the
@@ -62,6 +65,7 @@ struct CatcherBearingParams {
   CatcherMount mount = CatcherMount::kRigid;
   MetalRubberRingParams ring;   ///< mount = kMetalRubberRing only
   double gravity_y_m_s2 = 0.0;  ///< on the races and house, along +y (from [gravity])
+  friend bool operator==(const CatcherBearingParams&, const CatcherBearingParams&) = default;
 };
 
 }  // namespace ambdrop

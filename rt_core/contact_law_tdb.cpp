@@ -155,6 +155,22 @@ void ContactLawTdb::Evaluate(const JournalMotion& j, const double* state, double
   state_rate[0] = RaceAcceleration(p, race_speed, friction, normal);
 }
 
+double ContactLawTdb::FreeRadius_m(const double* s) const noexcept {
+  const ContactLawParams& c = params_.contact_law();
+  double reach = CentreOffset_m(params_);
+  if (HasRaceMass(c)) {
+    // Out of contact the race moves under its ribbon and weight only (EvaluateRaceWithMass).
+    reach += std::hypot(s[kRibbonX], s[kRibbonY]);
+  } else if (c.ribbon != ContactLawRibbon::kBilinear) {
+    // A massless race's rates resolve its ribbon's force along the journal's direction
+    // (SolveSeries): they read the journal unless the ribbon is at rest and unloaded.
+    for (int i = kRibbonX; i < state_size_; ++i) {
+      if (s[i] != 0.0) return 0.0;
+    }
+  }
+  return std::max(0.0, params_.clearance_m - reach);
+}
+
 void ContactLawTdb::EvaluateInSeries(const JournalMotion& j, const double* s, double* rate,
                                      TdbForce* out) const noexcept {
   const TdbParams& p = params_;

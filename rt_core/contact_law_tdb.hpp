@@ -66,6 +66,7 @@ class ContactLawTdb final : public TouchdownBearing {
   void InitialState(double* state) const noexcept override;
   void Evaluate(const JournalMotion& journal, const double* state, double* state_rate,
                 TdbForce* out) const noexcept override;
+  double FreeRadius_m(const double* state) const noexcept override;
 
  private:
   void EvaluateInSeries(const JournalMotion& journal, const double* state, double* state_rate,

@@ -50,6 +50,7 @@ struct ControllerSectionParams {
   /// s_biquad: coefficients of s^2, s, 1; z_biquad: of 1, z^-1, z^-2.
   std::array<double, 3> numerator{};
   std::array<double, 3> denominator{};
+  friend bool operator==(const ControllerSectionParams&, const ControllerSectionParams&) = default;
 };
 
 /// u = sections(e), e = -Gs * reading (V); command i = Ga u + i_ff (A), limited.
@@ -60,6 +61,7 @@ struct LinearControllerParams {
   AntiWindup anti_windup = AntiWindup::kConditional;
   double back_calculation_time_s = 0.0;
   std::vector<ControllerSectionParams> sections;
+  friend bool operator==(const LinearControllerParams&, const LinearControllerParams&) = default;
 };
 
 /// The amplifier's current loop between the command and the coil current.
@@ -69,6 +71,7 @@ struct AmplifierParams {
   double bandwidth_Hz = 0.0;
   double damping_ratio = 0.7071067811865476;                           ///< order 2
   double slew_rate_A_per_s = std::numeric_limits<double>::infinity();  ///< inf: no limit
+  friend bool operator==(const AmplifierParams&, const AmplifierParams&) = default;
 };
 
 }  // namespace ambdrop

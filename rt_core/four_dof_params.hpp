@@ -9,6 +9,7 @@ struct HuntCrossleyParams {
   double stiffness_N_per_m_n = 0.0;  ///< kn (N/m^n)
   double exponent = 1.0;             ///< n: 1 as printed in Eq. (10), 3/2 for Hertzian points
   double damping_s_per_m = 0.0;      ///< alpha_nl (s/m)
+  friend bool operator==(const HuntCrossleyParams&, const HuntCrossleyParams&) = default;
 };
 
 enum class BearingLaw {
@@ -32,6 +33,7 @@ struct BallBearingParams {
   double quadratic_stiffness_N_per_m2 = 0.0;
   double stiffness_N_per_m = 0.0;  ///< kbrg of the linear law (the Hertz data then unused)
   double damping_N_s_per_m = 0.0;  ///< cbrg of the linear law
+  friend bool operator==(const BallBearingParams&, const BallBearingParams&) = default;
 };
 
 enum class RibbonLaw {
@@ -44,6 +46,7 @@ enum class RibbonLaw {
 struct KelvinVoigtRibbonParams {
   double stiffness_N_per_m = 0.0;  ///< krd
   double damping_N_s_per_m = 0.0;  ///< crd
+  friend bool operator==(const KelvinVoigtRibbonParams&, const KelvinVoigtRibbonParams&) = default;
 };
 
 /// Generalized Dahl ribbon, Jarroux 2019 Eq. (1)-(3):
@@ -60,6 +63,7 @@ struct DahlRibbonParams {
   double upper_hardening_rate_per_m = 0.0;  ///< b
   double lower_hardening_N = 0.0;           ///< c
   double lower_hardening_rate_per_m = 0.0;  ///< d
+  friend bool operator==(const DahlRibbonParams&, const DahlRibbonParams&) = default;
 };
 
 /// Corrugated ribbon damper with a cross-coupled stiffness that opposes the outer race's whirl,
@@ -72,6 +76,8 @@ struct CrossCoupledRibbonParams {
   double cross_coupling = 0.0;                 ///< eta
   double damping_N_s_per_m = 0.0;              ///< ccrd
   double sign_regularisation_s_per_m = 100.0;  ///< vref of the arctan sign
+  friend bool operator==(const CrossCoupledRibbonParams&,
+                         const CrossCoupledRibbonParams&) = default;
 };
 
 /// 4-DOF TDB: journal / inner race (Hunt-Crossley), inner race (mass, x, y), ball bearing,
@@ -92,6 +98,7 @@ struct FourDofParams {
   KelvinVoigtRibbonParams kelvin_voigt;
   DahlRibbonParams dahl;
   CrossCoupledRibbonParams cross_coupled;
+  friend bool operator==(const FourDofParams&, const FourDofParams&) = default;
 };
 
 }  // namespace ambdrop

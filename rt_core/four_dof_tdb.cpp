@@ -56,6 +56,12 @@ void FourDofTdb::InitialState(double* s) const noexcept {
   s[kInnerY] = s[kOuterY] + bearing_deflection_m;
 }
 
+double FourDofTdb::FreeRadius_m(const double* s) const noexcept {
+  // Out of contact the races move under their weight, ribbon and bearing only (Evaluate).
+  const double reach = CentreOffset_m(params_) + std::hypot(s[kInnerX], s[kInnerY]);
+  return std::max(0.0, params_.clearance_m - reach);
+}
+
 void FourDofTdb::Evaluate(const JournalMotion& j, const double* s, double* rate,
                           TdbForce* out) const noexcept {
   const TdbParams& p = params_;

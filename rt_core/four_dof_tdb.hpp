@@ -46,6 +46,7 @@ class FourDofTdb final : public TouchdownBearing {
   void InitialState(double* state) const noexcept override;
   void Evaluate(const JournalMotion& journal, const double* state, double* state_rate,
                 TdbForce* out) const noexcept override;
+  double FreeRadius_m(const double* state) const noexcept override;
   const BallBearingCoefficients& bearing() const noexcept { return bearing_; }
 
  private:

@@ -17,6 +17,7 @@ struct ImpactParams {
   double exponent = 1.5;                    ///< e: 3/2 point contact, 10/9 line contact
   double max_damping_N_s_per_m = 0.0;       ///< cm
   double full_damping_penetration_m = 0.0;  ///< dm (paper: 0.01 mm)
+  friend bool operator==(const ImpactParams&, const ImpactParams&) = default;
 };
 
 /// ADAMS's STEP(x, x0, h0, x1, h1): h0 for x <= x0, h1 for x >= x1, in between the cubic

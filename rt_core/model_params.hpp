@@ -17,6 +17,7 @@ struct SensorNoiseParams {
   bool enabled = false;
   double std_dev_m = 0.0;
   std::uint64_t seed = 1;
+  friend bool operator==(const SensorNoiseParams&, const SensorNoiseParams&) = default;
 };
 
 /// Synchronous runout: a pattern on the rotor surface that turns with it (1X and 2X).
@@ -26,6 +27,7 @@ struct SensorRunoutParams {
   double phase_1x_rad = 0.0;
   double amplitude_2x_m = 0.0;
   double phase_2x_rad = 0.0;
+  friend bool operator==(const SensorRunoutParams&, const SensorRunoutParams&) = default;
 };
 
 /// Transport delay and first-order low-pass of the sensor electronics.
@@ -33,6 +35,7 @@ struct SensorLagParams {
   bool enabled = false;
   double delay_s = 0.0;    ///< between controller samples: read between them, linearly
   double cutoff_Hz = 0.0;  ///< 0: no filter
+  friend bool operator==(const SensorLagParams&, const SensorLagParams&) = default;
 };
 
 enum class SensorOutput { kMetres, kCounts };
@@ -63,6 +66,7 @@ struct SensorParams {
   SensorOutput output = SensorOutput::kMetres;
   double counts_per_m = 0.0;
   double counts_offset = 0.0;
+  friend bool operator==(const SensorParams&, const SensorParams&) = default;
 };
 
 /// Seed 003's PID, per radial axis: i = Ga (kp e + ki/s e + kd s/(1 + tau_d s) e) with
@@ -75,6 +79,7 @@ struct PidParams {
   double kd_s = 0.0;
   double derivative_filter_s = 0.0;  ///< tau_d
   bool gravity_feedforward = true;
+  friend bool operator==(const PidParams&, const PidParams&) = default;
 };
 
 enum class ControllerKind {
@@ -90,11 +95,13 @@ struct ControllerParams {
   LinearControllerParams linear;
   int delay_samples = 0;  ///< the command computed from sample n is applied at sample n + d
   AmplifierParams amplifier;
+  friend bool operator==(const ControllerParams&, const ControllerParams&) = default;
 };
 
 struct GravityParams {
   bool enabled = true;
   double acceleration_m_s2 = 9.81;  ///< along -y
+  friend bool operator==(const GravityParams&, const GravityParams&) = default;
 };
 
 /// Scheduled shutdown: the AMB forces vanish at this time (with flux decay, they fade). It can
@@ -106,6 +113,7 @@ struct TriggerParams {
   std::vector<std::string> ambs;  ///< AMBs that lose power; empty: all (a full power failure)
   bool axis_x = true;             ///< axes that lose power
   bool axis_y = true;
+  friend bool operator==(const TriggerParams&, const TriggerParams&) = default;
 };
 
 enum class InitialPosition {
@@ -130,6 +138,7 @@ struct SimulationParams {
   /// Ceiling on duration_s / step_s: a run beyond it is a config error, not days of computing
   /// (1e9 steps: 5000 s at the default step; about 10 min at 1.6 M steps/s).
   std::int64_t max_steps = 1'000'000'000;
+  friend bool operator==(const SimulationParams&, const SimulationParams&) = default;
 };
 
 /// Everything a config describes; immutable once a Model is built from it.
@@ -145,6 +154,7 @@ struct ModelParams {
   TriggerParams trigger;
   SimulationParams simulation;
   ControllerParams controller;
+  friend bool operator==(const ModelParams&, const ModelParams&) = default;
 };
 
 }  // namespace ambdrop

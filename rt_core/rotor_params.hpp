@@ -94,6 +94,7 @@ struct UnbalanceParams {
   double mass_kg = 0.0;
   double eccentricity_m = 0.0;
   double phase_rad = 0.0;
+  friend bool operator==(const UnbalanceParams&, const UnbalanceParams&) = default;
 };
 
 }  // namespace ambdrop

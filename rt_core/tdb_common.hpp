@@ -29,6 +29,11 @@ inline double InnerRaceRadius(const TdbParams& p) noexcept {
   return p.inner_race_radius_m > 0.0 ? p.inner_race_radius_m : p.journal_radius_m + p.clearance_m;
 }
 
+/// How far the bearing's centre sits from the machine axis (its misalignment, if on).
+inline double CentreOffset_m(const TdbParams& p) noexcept {
+  return p.misalignment.enabled ? std::hypot(p.misalignment.x_m, p.misalignment.y_m) : 0.0;
+}
+
 inline ContactGeometry JournalGeometry(const TdbParams& p, const JournalMotion& j,
                                        const RaceMotion& race = {}) noexcept {
   ContactGeometry g;

@@ -32,6 +32,7 @@ struct ContactLawParams {
   /// moves with it, Jarroux 2019 model #3's outer race); 0: a massless race (the default).
   double outer_race_mass_kg = 0.0;
   double gravity_y_m_s2 = 0.0;  ///< on that mass, along +y (set from [gravity] at load)
+  friend bool operator==(const ContactLawParams&, const ContactLawParams&) = default;
 };
 
 enum class FrictionLaw {
@@ -46,6 +47,7 @@ struct FrictionParams {
   /// Viscous tangential force on the journal's whirl speed while in contact (Jarroux 2019,
   /// Sec. 4.2: "a viscous force ... counteracting the rotor whirl motions").
   double whirl_damping_N_s_per_m = 0.0;
+  friend bool operator==(const FrictionParams&, const FrictionParams&) = default;
 };
 
 /// TDB rotation, Jarroux 2019 Eq. (9): Ieq dOmega/dt + Phi Omega = ft Rir - M1.
@@ -59,6 +61,7 @@ struct TdbSpinParams {
   /// k of the drag torque's own smooth sign, k W / sqrt(1 + (k W)^2) on the race speed W;
   /// 0: the friction's, vref Rir (see RaceAcceleration).
   double drag_regularisation_s_per_rad = 0.0;
+  friend bool operator==(const TdbSpinParams&, const TdbSpinParams&) = default;
 };
 
 /// Offset of the TDB centre from the magnetic centre (Jarroux 2019, Sec. 4).
@@ -66,6 +69,7 @@ struct MisalignmentParams {
   bool enabled = false;
   double x_m = 0.0;
   double y_m = 0.0;
+  friend bool operator==(const MisalignmentParams&, const MisalignmentParams&) = default;
 };
 
 enum class TdbModelKind {
@@ -115,6 +119,7 @@ struct TdbParams {
   FourDofParams& UseFourDof() { return model_params.emplace<FourDofParams>(); }
   BallBearingTdbParams& UseBallBearing() { return model_params.emplace<BallBearingTdbParams>(); }
   CatcherBearingParams& UseCatcher() { return model_params.emplace<CatcherBearingParams>(); }
+  friend bool operator==(const TdbParams&, const TdbParams&) = default;
 };
 
 }  // namespace ambdrop

@@ -42,6 +42,11 @@ class TouchdownBearing {
   /// Forces on the rotor and the rates of the internal states for the given journal motion.
   virtual void Evaluate(const JournalMotion& journal, const double* state, double* state_rate,
                         TdbForce* out) const noexcept = 0;
+  /// How far (m) the journal may be from the machine axis with this TDB in state `state` and
+  /// touch nothing: there its forces on the rotor are zero and its outputs and state rates do
+  /// not read the journal's motion, bit for bit. 0 where no such distance is known. A fit runs
+  /// a levitated time once for models that differ in their TDBs only (tools/fit).
+  virtual double FreeRadius_m(const double* /*state*/) const noexcept { return 0.0; }
   const TdbParams& params() const noexcept { return params_; }
 
  protected:

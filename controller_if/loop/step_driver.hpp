@@ -125,6 +125,34 @@ class StepDriver {
       command_[a] = input_.amb[a].current_A;
   }
 
+  /// What a run carries from one step to the next, but its power state: a fit that has run a
+  /// model's levitated time once resumes other models of the same levitated behaviour from it
+  /// (tools/fit/levitated_prefix_cache.hpp). Taken before any power event.
+  struct Snapshot {
+    std::optional<SensorEmulator> sensors;
+    State state;
+    ControlInput input;
+    AxisCurrents command{};
+    Observation obs;
+    SensorReadings readings;
+    std::int64_t sampled_step = -1;
+  };
+  Snapshot TakeSnapshot() const {
+    return {sensors_, state_, input_, command_, obs_, readings_, sampled_step_};
+  }
+  /// Resumes from `s`, whose sensors must be this driver's (their parameters equal).
+  void Restore(const Snapshot& s) {
+    sensors_ = s.sensors;
+    state_ = s.state;
+    input_ = s.input;
+    command_ = s.command;
+    obs_ = s.obs;
+    readings_ = s.readings;
+    sampled_step_ = s.sampled_step;
+    status_ = StepStatus::kOk;
+    stopped_ = false;
+  }
+
   const Model& model() const noexcept { return model_; }
   /// For a pre-run of the same physics and sensors (the settled start, settled_start.hpp).
   Simulator& sim() noexcept { return sim_; }

@@ -93,6 +93,7 @@ struct MeasurementChannel {
     c.axis = axis;
     return c;
   }
+  friend bool operator==(const MeasurementChannel&, const MeasurementChannel&) = default;
 };
 
 /// The quantity's SI unit ("m", "A", "N", "rad/s").
@@ -150,6 +151,7 @@ struct MeasurementParams {
   bool Drives(const MeasurementChannel& ch) const {
     return power_loss == PowerLossSource::kFromRecord && ch.quantity == MeasuredQuantity::kCurrent;
   }
+  friend bool operator==(const MeasurementParams&, const MeasurementParams&) = default;
 };
 
 namespace config_detail {

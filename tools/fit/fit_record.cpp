@@ -20,6 +20,7 @@ std::unique_ptr<FitResult> FitRecord(const ConfigVariants& config, const Measure
   auto fit = std::make_unique<FitResult>();
   RecordRunOptions run = options.run;
   if (!run.rotor_cache) run.rotor_cache = std::make_shared<ReducedRotorCache>();
+  if (!run.prefix_cache) run.prefix_cache = std::make_shared<LevitatedPrefixCache>();
   if (options.choose_step) {
     fit->step = ChooseFitStep(config, m, record, run, options.rules);
   } else {
@@ -67,6 +68,7 @@ std::unique_ptr<FitResult> FitRecord(const ConfigVariants& config, const Measure
     // runs the start from the estimate, whose uncertainty its floor must span.
     RecordRunOptions declared_run = options.run;
     declared_run.rotor_cache = run.rotor_cache;
+    declared_run.prefix_cache = run.prefix_cache;
     fit->step = ChooseFitStep(config, measurement, record, declared_run, options.rules);
     run.step_s = fit->step.step_s;
   }

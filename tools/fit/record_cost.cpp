@@ -117,6 +117,7 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
       scope_(scope) {
   trigger_s_ = RecordTriggerTime(measurement, record);
   if (!run_.rotor_cache) run_.rotor_cache = std::make_shared<ReducedRotorCache>();
+  if (!run_.prefix_cache) run_.prefix_cache = std::make_shared<LevitatedPrefixCache>();
   const bool closed = ClosedLoop(declared, measurement, run);
   const double t0 = record.time_s.front();
   const double t_end = record.time_s.back();

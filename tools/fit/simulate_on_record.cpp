@@ -356,7 +356,16 @@ SimulatedRecord RunOnRecord(const ModelParams& declared, const MeasurementParams
     out.lead_fit = fit.note;
     out.lead_misfit = fit.misfit;
   };
-  if (controlled) {
+  // A levitated time an earlier run of this fit ran bit for bit: resumed from its end.
+  const bool reusable = controlled && options.prefix_cache && !m.trigger_state_from_record;
+  const std::uint64_t fingerprint = reusable ? RecordFingerprint(r) : 0;
+  const std::optional<PrefixMatch> resumed =
+      reusable
+          ? options.prefix_cache->Find(model.params, model, m, fingerprint, options.keep_states)
+          : std::nullopt;
+  if (controlled && resumed) {
+    controller = resumed->prefix->controller;
+  } else if (controlled) {
     controller.emplace(model, static_cast<double>(substeps) * dt, dt);
     controller->Initial(&input);
     state = driver.sim().InitialState(static_load);
@@ -416,8 +425,29 @@ SimulatedRecord RunOnRecord(const ModelParams& declared, const MeasurementParams
   SensorReadings readings;
   std::size_t row = out.first_row;
   if (options.keep_states) out.states.assign(record_rows, Eigen::VectorXd());
+  // The step each row was predicted at, while this run's levitated time is kept for others.
+  const bool keeping = reusable && !resumed;
+  std::vector<std::int64_t> row_step(keeping ? record_rows : 0, -1);
+  // A TDB channel's value from what its TDB reports.
+  const auto tdb_value = [&](std::size_t c, const TdbForce& f) {
+    const MeasurementChannel& ch = m.channels[c];
+    switch (ch.quantity) {
+      case MeasuredQuantity::kTdbSupportForce: {
+        const double support = ch.axis == 0 ? f.support_x_N : f.support_y_N;
+        if (std::isnan(model_tare[c])) model_tare[c] = support;
+        return support - model_tare[c] + record_tare[c];
+      }
+      case MeasuredQuantity::kTdbNormalForce:
+        return f.normal_force_N;
+      case MeasuredQuantity::kTdbSpeed:
+        return f.tdb_spin_rad_s;
+      default:
+        return kNaN;
+    }
+  };
   const auto record_row = [&](const StepDriver& d, std::size_t j) {
     const State& state = d.state();
+    if (keeping) row_step[j] = state.step_index;
     const ControlInput& input = d.input();
     if (options.keep_states) out.states[j] = state.y.head(2 * n);
     Observation obs;
@@ -440,18 +470,10 @@ SimulatedRecord RunOnRecord(const ModelParams& declared, const MeasurementParams
           // command channel is then not compared, tools/fit/record_cost.hpp).
           v = closed ? command_A[ch.index][ch.axis] : kNaN;
           break;
-        case MeasuredQuantity::kTdbSupportForce: {
-          const TdbForce& f = obs.tdb[ch.index];
-          const double support = ch.axis == 0 ? f.support_x_N : f.support_y_N;
-          if (std::isnan(model_tare[c])) model_tare[c] = support;
-          v = support - model_tare[c] + record_tare[c];
-          break;
-        }
+        case MeasuredQuantity::kTdbSupportForce:
         case MeasuredQuantity::kTdbNormalForce:
-          v = obs.tdb[ch.index].normal_force_N;
-          break;
         case MeasuredQuantity::kTdbSpeed:
-          v = obs.tdb[ch.index].tdb_spin_rad_s;
+          v = tdb_value(c, obs.tdb[ch.index]);
           break;
         case MeasuredQuantity::kRotorSpeed:
           v = obs.spin_speed_rad_s;
@@ -542,15 +564,96 @@ SimulatedRecord RunOnRecord(const ModelParams& declared, const MeasurementParams
     }
     return row < total_rows;
   };
-  driver.SetInput(input);
-  driver.Start(state);
-  if (row < total_rows) {
+  const bool any_rows = row < total_rows;
+  if (resumed) {
+    const LevitatedPrefix& p = *resumed->prefix;
+    StepDriver::Snapshot at_trigger = p.driver;
+    // The rotor's part is the cached run's; each TDB's, in this model's layout, its own.
+    at_trigger.state.y = StateVector::Zero(model.state_size);
+    at_trigger.state.y.head(2 * n + 2) = p.driver.state.y.head(2 * n + 2);
+    for (std::size_t i = 0; i < model.tdbs.size(); ++i) {
+      at_trigger.state.y.segment(model.tdb_state_offset[i], model.tdbs[i]->StateSize()) =
+          resumed->tdbs[i].state;
+    }
+    driver.Restore(at_trigger);
+    sensors = *p.record_sensors;
+    input = p.input;
+    command_A = p.command;
+    row = p.row;
+    out.rows = p.rows;
+    for (std::size_t c = 0; c < m.channels.size(); ++c) {
+      std::copy(p.values[c].begin(), p.values[c].end(), out.values[c].begin());
+    }
+    if (options.keep_states) std::copy(p.states.begin(), p.states.end(), out.states.begin());
+    model_tare = p.model_tare;
+    // A changed TDB's channels as it reported them at the cached rows.
+    for (std::size_t c = 0; c < m.channels.size(); ++c) {
+      const MeasurementChannel& ch = m.channels[c];
+      const bool of_a_tdb = ch.quantity == MeasuredQuantity::kTdbSupportForce ||
+                            ch.quantity == MeasuredQuantity::kTdbNormalForce ||
+                            ch.quantity == MeasuredQuantity::kTdbSpeed;
+      if (!of_a_tdb || !resumed->tdbs[ch.index].changed) continue;
+      model_tare[c] = kNaN;
+      for (std::size_t j = 0; j < p.row; ++j) {
+        if (p.row_step[j] >= 0) out.values[c][j] = tdb_value(c, resumed->tdbs[ch.index].at_row[j]);
+      }
+    }
+  } else {
+    driver.SetInput(input);
+    driver.Start(state);
+  }
+  // Per TDB while the levitated time is kept: the journal's reach and the TDB's free radius.
+  std::array<double, kMaxTdbs> reach_m{}, free_m{};
+  free_m.fill(std::numeric_limits<double>::infinity());
+  if (any_rows) {
     for (;;) {
       // The lead window's fit runs between steps, outside the noexcept step: it may throw.
       if (driver.state().step_index == lead_step && !lead_driven) {
         fit_lead_window(driver.mutable_state(),
                         static_cast<double>(model.trigger_step - lead_step) * dt);
         lead_driven = true;
+      }
+      if (keeping && driver.state().step_index <= model.trigger_step) {
+        const StateVector& y = driver.state().y;
+        for (std::size_t i = 0; i < model.tdbs.size(); ++i) {
+          const Eigen::Vector2d at = model.tdb_shapes[i] * y.head(n);
+          const Eigen::Vector2d speed = model.tdb_shapes[i] * y.segment(n, n);
+          reach_m[i] = std::max(reach_m[i], at.norm() + 2.0 * dt * speed.norm());
+          free_m[i] = std::min(free_m[i],
+                               model.tdbs[i]->FreeRadius_m(y.data() + model.tdb_state_offset[i]));
+        }
+        if (driver.state().step_index == model.trigger_step) {
+          auto kept = std::make_shared<LevitatedPrefix>();
+          kept->params = model.params;
+          kept->measurement = m;
+          kept->record_fingerprint = fingerprint;
+          kept->keep_states = options.keep_states;
+          const bool settled = SettleSteps(model) > 0;
+          for (std::size_t i = 0; i < model.tdbs.size(); ++i) {
+            kept->tdb_free[i] = !settled && JournalFree(reach_m[i], free_m[i]);
+          }
+          kept->journal_reach_m = reach_m;
+          kept->steps = model.trigger_step;
+          kept->tdb_state_offset = model.tdb_state_offset;
+          kept->driver = driver.TakeSnapshot();
+          kept->controller = controller;
+          kept->record_sensors = sensors;
+          kept->input = input;
+          kept->command = command_A;
+          kept->row = row;
+          kept->rows = out.rows;
+          for (const std::vector<double>& v : out.values) {
+            kept->values.emplace_back(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(row));
+          }
+          if (options.keep_states) {
+            kept->states.assign(out.states.begin(),
+                                out.states.begin() + static_cast<std::ptrdiff_t>(row));
+          }
+          kept->model_tare = model_tare;
+          kept->row_step.assign(row_step.begin(),
+                                row_step.begin() + static_cast<std::ptrdiff_t>(row));
+          options.prefix_cache->Insert(std::move(kept));
+        }
       }
       if (!driver.Step(hooks)) break;
     }

@@ -17,6 +17,7 @@
 #include "io/files/measured_csv.hpp"
 #include "rt_core/model_params.hpp"
 #include "rt_core/simulator.hpp"
+#include "tools/fit/levitated_prefix_cache.hpp"
 #include "tools/fit/reduced_rotor_cache.hpp"
 
 namespace ambdrop {
@@ -53,6 +54,9 @@ struct RecordRunOptions {
   /// Shared by the runs of one fit (copies of these options share it): the rig's rotor is
   /// reduced once. Null: each run reduces it.
   std::shared_ptr<ReducedRotorCache> rotor_cache;
+  /// Shared by the runs of one fit: closed-loop runs whose levitated time repeats an earlier
+  /// run's resume from it (levitated_prefix_cache.hpp). Null: every run from its start.
+  std::shared_ptr<LevitatedPrefixCache> prefix_cache;
   /// Open loop: added to every displacement channel's value and slope at the start before the
   /// initial state is fitted to them; the start sensitivity's probes of how closely the record's
   /// noise pins that state (tools/fit/start_sensitivity.cpp).
