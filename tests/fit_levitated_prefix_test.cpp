@@ -27,9 +27,10 @@ struct Rig {
 
 // A truth rig's translation (a declared controller), shortened to 12 ms after its trigger, and
 // its own record with every channel a load cell adds.
-Rig MakeRig(const std::string& file, double trigger_s) {
-  const std::vector<std::string> timing = {"simulation.duration_s=" +
-                                           std::to_string(trigger_s + 0.012)};
+Rig MakeRig(const std::string& file, double trigger_s, double settle_s = 0.0) {
+  const std::vector<std::string> timing = {
+      "simulation.duration_s=" + std::to_string(trigger_s + 0.012),
+      "simulation.settle_s=" + std::to_string(settle_s)};
   const std::string path = std::string(AMBDROP_SOURCE_DIR) + "/tests/truth/" + file;
   Rig rig{path, LoadConfig(path, timing), {}};
   MeasureOptions options;
@@ -40,8 +41,9 @@ Rig MakeRig(const std::string& file, double trigger_s) {
 }
 
 ModelParams With(const Rig& rig, const std::vector<std::string>& set) {
-  std::vector<std::string> all = {"simulation.duration_s=" +
-                                  std::to_string(rig.config.params.simulation.duration_s)};
+  std::vector<std::string> all = {
+      "simulation.duration_s=" + std::to_string(rig.config.params.simulation.duration_s),
+      "simulation.settle_s=" + std::to_string(rig.config.params.simulation.settle_s)};
   all.insert(all.end(), set.begin(), set.end());
   return LoadConfig(rig.path, all).params;
 }
@@ -76,9 +78,13 @@ struct Case {
 };
 
 // Runs the declared model into a fresh cache, then each case with the cache and alone: the two
-// must agree bit for bit, and the cache resumes exactly the cases that say so.
-void CheckCases(const Rig& rig, const std::vector<Case>& cases, bool keep_states) {
-  const MeasurementParams& m = rig.made.measurement;
+// must agree bit for bit, and the cache resumes exactly the cases that say so. With
+// `trigger_state_from_record` the runs fit the state at the trigger to a lead window of the
+// record: they resume at the window's start and each fits it with its own model.
+void CheckCases(const Rig& rig, const std::vector<Case>& cases, bool keep_states,
+                bool trigger_state_from_record = false) {
+  MeasurementParams m = rig.made.measurement;
+  m.trigger_state_from_record = trigger_state_from_record;
   RecordRunOptions cached;
   cached.keep_states = keep_states;
   cached.prefix_cache = std::make_shared<LevitatedPrefixCache>();
@@ -139,6 +145,28 @@ TEST(LevitatedPrefix, FourDofRigResumesWithItsRacesIntegratedAloneBitForBit) {
               {"hold time", {"amb.nde.flux_decay.hold_time_s=2e-3"}, true},
               {"rotor mass", {"rotor.rigid.mass_kg=33"}, false}},
              /*keep_states=*/false);
+}
+
+// measurement.trigger_state = "record" (the magnet-biased flexible rig's translation has it).
+TEST(LevitatedPrefix, ARunThatFitsTheTriggerStateResumesAtItsLeadWindowBitForBit) {
+  const Rig rig = MakeRig("rigid_rotor_a.toml", 0.1);
+  CheckCases(rig,
+             {{"friction", {"tdb.nde.friction.coefficient=0.3"}, true},
+              {"clearance", {"tdb.de.clearance_m=3e-4"}, true},
+              {"sensor gain", {"sensor.nde.gain=0.98"}, false}},
+             /*keep_states=*/false, /*trigger_state_from_record=*/true);
+}
+
+// A settled start (simulation.settle_s): the controller runs before t = 0, the races settle
+// through it too; its steps are watched and integrated as the levitated time's.
+TEST(LevitatedPrefix, ASettledStartResumesWithItsSettlingStepsBitForBit) {
+  const Rig rig = MakeRig("rigid_fourdof_c.toml", 0.05, 0.02);
+  ASSERT_GT(rig.config.params.simulation.settle_s, 0.0);
+  CheckCases(rig,
+             {{"friction", {"tdb.de.friction.coefficient=0.3"}, true},
+              {"race masses", {"tdb.nde.four_dof.outer_race_mass_kg=0.6"}, true},
+              {"sensor offset", {"sensor.nde.offset_m=2e-6"}, false}},
+             /*keep_states=*/true);
 }
 
 }  // namespace

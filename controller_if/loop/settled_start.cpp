@@ -42,6 +42,7 @@ SettleResult SettleClosedLoop(const Model& model, Simulator& sim, State* state,
       controller->Update(readings, input);
     }
     controller->Advance(input);
+    result.clearance.Watch(model, state->y);
     const StepStatus status = sim.Step(state, *input);
     if (status != StepStatus::kOk) {
       result.status = status;

@@ -13,6 +13,7 @@
 #include "rt_core/control_input.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/simulator.hpp"
+#include "rt_core/tdb_clearance_watch.hpp"
 
 namespace ambdrop {
 
@@ -24,6 +25,8 @@ struct SettleResult {
   /// revolution of the settling (or its last 10 ms without spin): how steady the start is (a
   /// synchronous orbit repeats each revolution); 0 when nothing settled.
   double last_change_m = 0.0;
+  /// How close the journal came to each TDB while settling.
+  TdbClearanceWatch clearance;
 };
 
 /// Steps of simulation.settle_s, rounded to whole controller periods.

@@ -11,14 +11,15 @@ namespace {
 // lie between the steps, and the reach's allowance for them is an estimate.
 constexpr double kFreeShare = 0.9;
 
-// Integrates TDB `tdb`'s own states alone over `steps` steps of `dt` from its initial state,
+// Integrates TDB `tdb`'s own states alone over `steps` steps of `dt` from its initial state
+// (a settled start's `settle_steps` first, then the run's from t = 0),
 // with Simulator::Step's RK4 sums (rt_core/simulator.cpp; element by element, so each state
 // comes out as in a whole run), the journal at the axis: free, its rates do not read it. False
 // if the journal's reach leaves its free radius at any step. Fills `at_row` for the steps in
 // `row_step`.
-bool IntegrateFreeTdb(const TouchdownBearing& tdb, double dt, std::int64_t steps, double reach_m,
-                      double spin_rad_s, const std::vector<std::int64_t>& row_step,
-                      ResumedTdb* out) {
+bool IntegrateFreeTdb(const TouchdownBearing& tdb, double dt, std::int64_t settle_steps,
+                      std::int64_t steps, double reach_m, double spin_rad_s,
+                      const std::vector<std::int64_t>& row_step, ResumedTdb* out) {
   const int size = tdb.StateSize();
   Eigen::VectorXd y(size), k1(size), k2(size), k3(size), k4(size), stage(size);
   tdb.InitialState(y.data());
@@ -33,18 +34,19 @@ bool IntegrateFreeTdb(const TouchdownBearing& tdb, double dt, std::int64_t steps
   const bool at_rest = (k1.array() == 0.0).all();
   out->at_row.assign(row_step.size(), TdbForce{});
   std::size_t next_row = 0;
-  // Rows by step (row_step rises with the row; -1: no step).
+  // Rows by step from t = 0 (row_step rises with the row; -1: none).
   const auto report_rows = [&](std::int64_t k) {
     while (next_row < row_step.size() && row_step[next_row] <= k) {
-      if (row_step[next_row] == k)
+      if (row_step[next_row] == k && k >= 0) {
         tdb.Evaluate(centred, y.data(), k1.data(), &out->at_row[next_row]);
+      }
       ++next_row;
     }
   };
   const double half_h = 0.5 * dt;
   const double sixth_h = dt / 6.0;
-  for (std::int64_t k = 0; k < steps; ++k) {
-    report_rows(k);
+  for (std::int64_t k = -settle_steps; k < steps; ++k) {
+    if (k >= 0) report_rows(k);
     if (at_rest) continue;
     tdb.Evaluate(centred, y.data(), k1.data(), &force);
     stage = y + half_h * k1;
@@ -132,8 +134,8 @@ std::optional<PrefixMatch> LevitatedPrefixCache::Find(const ModelParams& params,
         t.state = p.driver.state.y.segment(p.tdb_state_offset[i], model.tdbs[i]->StateSize());
         continue;
       }
-      resumable = IntegrateFreeTdb(*model.tdbs[i], model.params.simulation.step_s, p.steps,
-                                   p.journal_reach_m[i], spin, p.row_step, &t);
+      resumable = IntegrateFreeTdb(*model.tdbs[i], model.params.simulation.step_s, p.settle_steps,
+                                   p.steps, p.journal_reach_m[i], spin, p.row_step, &t);
     }
     if (!resumable) continue;
     std::lock_guard<std::mutex> lock(mutex_);

@@ -12,8 +12,9 @@
 //     on the rotor were zero and its rates did not read the journal. Its own states (races
 //     settling under their weight) are integrated alone with the simulator's RK4 sums, which
 //     are element by element, so they come out as in a whole run.
-// The record, its [measurement] table and the run's options that act before the trigger are
-// part of the comparison. A resumed run is bit for bit the run it replaces (tests hold it).
+// A settled start's steps count as the prefix's. The record, its [measurement] table and the
+// run's options that act before the trigger are part of the comparison. A resumed run is bit for
+// bit the run it replaces (tests hold it).
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -39,13 +40,14 @@ struct LevitatedPrefix {
   MeasurementParams measurement;
   std::uint64_t record_fingerprint = 0;
   bool keep_states = false;
-  /// Per TDB: whether the journal stayed well inside its free radius over the whole prefix
-  /// (never for a settled start, whose steps the prefix does not see).
+  /// Per TDB: whether the journal stayed well inside its free radius over the whole prefix,
+  /// a settled start's steps included.
   std::array<bool, kMaxTdbs> tdb_free{};
   /// Per TDB: the journal's largest reach from the machine axis over the prefix's steps, its
   /// distance plus twice its speed times the step (where the RK4 stages may take it).
   std::array<double, kMaxTdbs> journal_reach_m{};
-  std::int64_t steps = 0;             ///< simulator steps in the prefix (the trigger's step index)
+  std::int64_t settle_steps = 0;  ///< steps of a settled start (simulation.settle_s) before t = 0
+  std::int64_t steps = 0;         ///< steps from t = 0 to the trigger (its step index)
   std::vector<int> tdb_state_offset;  ///< the cached model's layout of State::y
 
   StepDriver::Snapshot driver;

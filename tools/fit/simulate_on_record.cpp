@@ -20,6 +20,7 @@
 #include "rt_core/amb_force.hpp"
 #include "rt_core/model.hpp"
 #include "rt_core/power_loss_drive.hpp"
+#include "rt_core/tdb_clearance_watch.hpp"
 #include "tools/fit/held_current.hpp"
 #include "tools/fit/lead_state_estimate.hpp"
 #include "tools/fit/not_a_number.hpp"
@@ -356,13 +357,17 @@ SimulatedRecord RunOnRecord(const ModelParams& declared, const MeasurementParams
     out.lead_fit = fit.note;
     out.lead_misfit = fit.misfit;
   };
-  // A levitated time an earlier run of this fit ran bit for bit: resumed from its end.
-  const bool reusable = controlled && options.prefix_cache && !m.trigger_state_from_record;
+  // A levitated time an earlier run of this fit ran bit for bit: resumed from its end (the
+  // trigger, or the start of the lead window of measurement.trigger_state).
+  const bool reusable = controlled && options.prefix_cache;
   const std::uint64_t fingerprint = reusable ? RecordFingerprint(r) : 0;
   const std::optional<PrefixMatch> resumed =
       reusable
           ? options.prefix_cache->Find(model.params, model, m, fingerprint, options.keep_states)
           : std::nullopt;
+  // How close the journal comes to each TDB before the trigger, while that time is kept.
+  TdbClearanceWatch clearance;
+  std::int64_t settle_steps = 0;
   if (controlled && resumed) {
     controller = resumed->prefix->controller;
   } else if (controlled) {
@@ -379,6 +384,8 @@ SimulatedRecord RunOnRecord(const ModelParams& declared, const MeasurementParams
       out.failure = settled.failure;
       return out;
     }
+    clearance = settled.clearance;
+    settle_steps = settled.steps;
     keep_command();
   } else if (closed) {
     state = driver.sim().InitialState(static_load);
@@ -407,6 +414,9 @@ SimulatedRecord RunOnRecord(const ModelParams& declared, const MeasurementParams
                                      ? std::max<std::int64_t>(0, model.trigger_step - lead_steps)
                                      : -1;
   bool lead_driven = false;
+  // Where a run's levitated time ends for the runs that resume from it: the trigger's step, or
+  // the lead window's start, whose fit reads the run's own model.
+  const std::int64_t resume_step = lead_step >= 0 ? lead_step : model.trigger_step;
 
   // Rows of the record to predict, and the step each falls on.
   const std::size_t record_rows = r.time_s.size();
@@ -602,38 +612,23 @@ SimulatedRecord RunOnRecord(const ModelParams& declared, const MeasurementParams
     driver.SetInput(input);
     driver.Start(state);
   }
-  // Per TDB while the levitated time is kept: the journal's reach and the TDB's free radius.
-  std::array<double, kMaxTdbs> reach_m{}, free_m{};
-  free_m.fill(std::numeric_limits<double>::infinity());
   if (any_rows) {
     for (;;) {
-      // The lead window's fit runs between steps, outside the noexcept step: it may throw.
-      if (driver.state().step_index == lead_step && !lead_driven) {
-        fit_lead_window(driver.mutable_state(),
-                        static_cast<double>(model.trigger_step - lead_step) * dt);
-        lead_driven = true;
-      }
-      if (keeping && driver.state().step_index <= model.trigger_step) {
-        const StateVector& y = driver.state().y;
-        for (std::size_t i = 0; i < model.tdbs.size(); ++i) {
-          const Eigen::Vector2d at = model.tdb_shapes[i] * y.head(n);
-          const Eigen::Vector2d speed = model.tdb_shapes[i] * y.segment(n, n);
-          reach_m[i] = std::max(reach_m[i], at.norm() + 2.0 * dt * speed.norm());
-          free_m[i] = std::min(free_m[i],
-                               model.tdbs[i]->FreeRadius_m(y.data() + model.tdb_state_offset[i]));
-        }
-        if (driver.state().step_index == model.trigger_step) {
+      if (keeping && driver.state().step_index <= resume_step) {
+        clearance.Watch(model, driver.state().y);
+        if (driver.state().step_index == resume_step) {
           auto kept = std::make_shared<LevitatedPrefix>();
           kept->params = model.params;
           kept->measurement = m;
           kept->record_fingerprint = fingerprint;
           kept->keep_states = options.keep_states;
-          const bool settled = SettleSteps(model) > 0;
           for (std::size_t i = 0; i < model.tdbs.size(); ++i) {
-            kept->tdb_free[i] = !settled && JournalFree(reach_m[i], free_m[i]);
+            kept->tdb_free[i] =
+                JournalFree(clearance.journal_reach_m[i], clearance.free_radius_m[i]);
           }
-          kept->journal_reach_m = reach_m;
-          kept->steps = model.trigger_step;
+          kept->journal_reach_m = clearance.journal_reach_m;
+          kept->settle_steps = settle_steps;
+          kept->steps = resume_step;
           kept->tdb_state_offset = model.tdb_state_offset;
           kept->driver = driver.TakeSnapshot();
           kept->controller = controller;
@@ -654,6 +649,12 @@ SimulatedRecord RunOnRecord(const ModelParams& declared, const MeasurementParams
                                 row_step.begin() + static_cast<std::ptrdiff_t>(row));
           options.prefix_cache->Insert(std::move(kept));
         }
+      }
+      // The lead window's fit runs between steps, outside the noexcept step: it may throw.
+      if (driver.state().step_index == lead_step && !lead_driven) {
+        fit_lead_window(driver.mutable_state(),
+                        static_cast<double>(model.trigger_step - lead_step) * dt);
+        lead_driven = true;
       }
       if (!driver.Step(hooks)) break;
     }
