@@ -89,18 +89,24 @@ bool JournalFree(double reach_m, double free_radius_m) {
 }
 
 std::uint64_t RecordFingerprint(const MeasuredRecord& record) {
-  // FNV-1a over the values' bits, word by word.
-  std::uint64_t h = 1469598103934665603ull;
-  const auto mix = [&h](double v) {
-    h ^= std::bit_cast<std::uint64_t>(v);
-    h *= 1099511628211ull;
+  // FNV-1a over the values' bits, word by word, in four interleaved lanes (one lane's chain of
+  // multiplies was 4 % of a fit), the lanes folded at the end.
+  constexpr std::uint64_t kPrime = 1099511628211ull;
+  std::array<std::uint64_t, 4> lane = {1469598103934665603ull, 1ull, 2ull, 3ull};
+  const auto mix = [&lane](const std::vector<double>& v) {
+    std::size_t k = 0;
+    for (; k + 4 <= v.size(); k += 4) {
+      for (std::size_t l = 0; l < 4; ++l) {
+        lane[l] = (lane[l] ^ std::bit_cast<std::uint64_t>(v[k + l])) * kPrime;
+      }
+    }
+    for (; k < v.size(); ++k) lane[0] = (lane[0] ^ std::bit_cast<std::uint64_t>(v[k])) * kPrime;
+    lane[1] = (lane[1] ^ v.size()) * kPrime;
   };
-  mix(static_cast<double>(record.time_s.size()));
-  for (double t : record.time_s) mix(t);
-  for (const std::vector<double>& column : record.values) {
-    mix(static_cast<double>(column.size()));
-    for (double v : column) mix(v);
-  }
+  mix(record.time_s);
+  for (const std::vector<double>& column : record.values) mix(column);
+  std::uint64_t h = 1469598103934665603ull;
+  for (const std::uint64_t l : lane) h = (h ^ l) * kPrime;
   return h;
 }
 
