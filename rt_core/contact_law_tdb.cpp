@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "rt_core/hunt_crossley.hpp"
 #include "rt_core/ribbon_cross_coupled.hpp"
 #include "rt_core/ribbon_dahl.hpp"
 #include "rt_core/tdb_common.hpp"
@@ -42,7 +43,16 @@ SeriesSolution SolveSeries(const TdbParams& p, const JournalMotion& j, const Con
   const double delta = g.radius_m - p.clearance_m;
   SeriesSolution s;
   double rate_n = 0.0;
-  if (delta > 0.0) {
+  if (delta > 0.0 && c.normal_law == ContactLawNormal::kHuntCrossley) {
+    // Jarroux 2019 Eq. (10) on the journal/race penetration: fn = E (1 + 3/2 alpha (v_j - u')·n),
+    // E = kn delta^n, linear in u'_n as Eq. (12) is, so (c + 3/2 alpha E) u'_n =
+    // E (1 + 3/2 alpha v_j·n) - R·n.
+    const double elastic = HuntCrossleyForce(
+        {c.hunt_crossley.stiffness_N_per_m_n, c.hunt_crossley.exponent, 0.0}, delta, 0.0);
+    const double viscous = 1.5 * c.hunt_crossley.damping_s_per_m * elastic;
+    rate_n = (elastic + viscous * g.radial_speed_m_s - ribbon_n) / (damping_N_s_per_m + viscous);
+    s.normal_N = elastic + viscous * (g.radial_speed_m_s - rate_n);
+  } else if (delta > 0.0) {
     // Jarroux 2019 Eq. (12), crushed branch, on the bearing's deflection; (c + cbrg) u'_n =
     // kbrg delta + cbrg v_j·n - R·n.
     rate_n = (c.bearing_stiffness_N_per_m * delta +
@@ -131,8 +141,11 @@ void ContactLawTdb::Evaluate(const JournalMotion& j, const double* state, double
   double normal = 0.0;
   double friction = 0.0;
   if (urs > 0.0) {
-    // Jarroux 2019 Eq. (12); a receding contact cannot pull, so fn >= 0.
-    if (urs >= c.ribbon_crushing_m) {
+    // Jarroux 2019 Eq. (12), or Eq. (10) on a rigid race; a receding contact cannot pull, so
+    // fn >= 0.
+    if (c.normal_law == ContactLawNormal::kHuntCrossley) {
+      normal = HuntCrossleyForce(c.hunt_crossley, urs, g.radial_speed_m_s);
+    } else if (urs >= c.ribbon_crushing_m) {
       normal = c.bearing_stiffness_N_per_m * (urs - c.ribbon_crushing_m) +
                c.bearing_damping_N_s_per_m * g.radial_speed_m_s +
                c.ribbon_stiffness_N_per_m * c.ribbon_crushing_m;
@@ -236,6 +249,9 @@ void ContactLawTdb::EvaluateRaceWithMass(const JournalMotion& j, const double* s
   const JournalContact contact = TouchJournal(
       p, j, {ux, uy, vx, vy}, race_speed, p.friction.whirl_damping_N_s_per_m,
       [&c](double delta, const ContactGeometry& g) {
+        if (c.normal_law == ContactLawNormal::kHuntCrossley) {
+          return HuntCrossleyForce(c.hunt_crossley, delta, g.radial_speed_m_s);  // Eq. (10)
+        }
         // Jarroux 2019 Eq. (12), crushed branch; a receding contact cannot pull.
         return std::max(0.0, c.bearing_stiffness_N_per_m * delta +
                                  c.bearing_damping_N_s_per_m * g.radial_speed_m_s);

@@ -12,6 +12,12 @@ namespace ambdrop {
 ///   Ieq Omega_tdb' + Phi Omega_tdb = ft Rir - M1,  M1 = f1 fn dm (Palmgren).
 /// One internal state: the inner-race speed Omega_tdb (rad/s).
 ///
+/// Hunt-Crossley normal law (contact_law.normal_law = "hunt_crossley"): Jarroux 2019 Eq. (10),
+/// fn = kn urs^n (1 + 3/2 alpha urs'), in place of Eq. (12): a rigid race met by a Hertzian
+/// contact (n = 3/2 for a point, about 10/9 for a line). With a ribbon in series it takes the
+/// bearing's (kbrg, cbrg) place; the massless race's balance stays linear in u'_n (below), with
+/// cbrg -> 3/2 alpha kn delta^n.
+///
 /// Ribbon in series (contact_law.ribbon = "dahl" or "cross_coupled"): the bilinear law's ribbon
 /// (keq, ceq, urd) becomes a ribbon law of its own between a massless outer race and the housing,
 /// in series with the bearing (kbrg, cbrg) that meets the journal. The race centre is carried by

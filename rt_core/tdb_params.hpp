@@ -15,9 +15,18 @@ enum class ContactLawRibbon {
   kCrossCoupled,  ///< race on the cross-coupled ribbon, Jarroux 2016 (seed 001) Eq. (1)
 };
 
+/// The normal law where the journal meets the contact-law TDB.
+enum class ContactLawNormal {
+  kBilinear,      ///< Jarroux 2019 Eq. (12) (the default)
+  kHuntCrossley,  ///< Jarroux 2019 Eq. (10) on the journal/race penetration, in place of Eq. (12)
+};
+
 /// Contact-law TDB, Jarroux 2019 Eq. (12): ribbon (keq, ceq) until crushed by urd, then the ball
 /// bearing (kbrg, cbrg) in series with the crushed ribbon's static force keq*urd. With a Dahl or
-/// cross-coupled ribbon the bearing (kbrg, cbrg) is in series with that ribbon instead.
+/// cross-coupled ribbon the bearing (kbrg, cbrg) is in series with that ribbon instead. With
+/// normal_law = kHuntCrossley the journal meets the race by Eq. (10) instead: without a ribbon in
+/// series that is the whole law (a rigid race, the common Hertzian TDB of the literature), with
+/// one it takes the bearing's (kbrg, cbrg) place.
 struct ContactLawParams {
   double bearing_stiffness_N_per_m = 0.0;  ///< kbrg
   double bearing_damping_N_s_per_m = 0.0;  ///< cbrg
@@ -32,6 +41,8 @@ struct ContactLawParams {
   /// moves with it, Jarroux 2019 model #3's outer race); 0: a massless race (the default).
   double outer_race_mass_kg = 0.0;
   double gravity_y_m_s2 = 0.0;  ///< on that mass, along +y (set from [gravity] at load)
+  ContactLawNormal normal_law = ContactLawNormal::kBilinear;
+  HuntCrossleyParams hunt_crossley = {};  ///< normal_law = kHuntCrossley
   friend bool operator==(const ContactLawParams&, const ContactLawParams&) = default;
 };
 

@@ -112,9 +112,10 @@ CrossCoupledRibbonParams ReadCrossCoupled(const TableReader& table) {
 // name. As there, the selected ribbon's table is required and the other one checked if given.
 ContactLawParams ReadContactLaw(const TableReader& tdb, const GravityParams& gravity) {
   const TableReader table = tdb.Table("contact_law");
-  table.AllowOnly({"bearing_stiffness_N_per_m", "bearing_damping_N_s_per_m",
-                   "ribbon_stiffness_N_per_m", "ribbon_damping_N_s_per_m", "ribbon_crushing_m",
-                   "ribbon", "dahl", "cross_coupled", "outer_race_mass_kg"});
+  table.AllowOnly({"normal_law", "hunt_crossley", "bearing_stiffness_N_per_m",
+                   "bearing_damping_N_s_per_m", "ribbon_stiffness_N_per_m",
+                   "ribbon_damping_N_s_per_m", "ribbon_crushing_m", "ribbon", "dahl",
+                   "cross_coupled", "outer_race_mass_kg"});
   ContactLawParams params;
   const std::string ribbon =
       table.Choice("ribbon", {"bilinear", "dahl", "cross_coupled"}, "bilinear");
@@ -122,6 +123,14 @@ ContactLawParams ReadContactLaw(const TableReader& tdb, const GravityParams& gra
                   : ribbon == "cross_coupled" ? ContactLawRibbon::kCrossCoupled
                                               : ContactLawRibbon::kBilinear;
   const bool bilinear = params.ribbon == ContactLawRibbon::kBilinear;
+  // Jarroux 2019 Eq. (10) in place of Eq. (12): its table is required; given with the bilinear
+  // law it is checked, as the unselected ribbon's table is, so that `--set` can switch.
+  const std::string normal = table.Choice("normal_law", {"bilinear", "hunt_crossley"}, "bilinear");
+  if (normal == "hunt_crossley") params.normal_law = ContactLawNormal::kHuntCrossley;
+  const bool hunt_crossley = params.normal_law == ContactLawNormal::kHuntCrossley;
+  if (hunt_crossley || table.Has("hunt_crossley")) {
+    params.hunt_crossley = ReadHuntCrossley(table, "hunt_crossley");
+  }
   params.gravity_y_m_s2 = gravity.enabled ? -gravity.acceleration_m_s2 : 0.0;
   // The bilinear law has no race in series: there a given mass is checked and kept for a switch
   // of `ribbon` (as the other ribbon's table is), and an absent one is not logged as a key a fit
@@ -130,9 +139,25 @@ ContactLawParams ReadContactLaw(const TableReader& tdb, const GravityParams& gra
       bilinear ? table.OptionalNumber("outer_race_mass_kg", NonNegative()).value_or(0.0)
                : table.Number("outer_race_mass_kg", NonNegative(), 0.0);
   const bool massless_race = bilinear || !(params.outer_race_mass_kg > 0.0);
-  params.bearing_stiffness_N_per_m = table.Number("bearing_stiffness_N_per_m", Positive());
-  params.bearing_damping_N_s_per_m = table.Number("bearing_damping_N_s_per_m", NonNegative());
-  if (bilinear) {
+  if (hunt_crossley) {
+    // Eq. (10) replaces the bearing where the journal meets the race and, with no ribbon in
+    // series, the whole of Eq. (12): given, those numbers are checked, absent, not logged.
+    params.bearing_stiffness_N_per_m =
+        table.OptionalNumber("bearing_stiffness_N_per_m", Positive()).value_or(0.0);
+    params.bearing_damping_N_s_per_m =
+        table.OptionalNumber("bearing_damping_N_s_per_m", NonNegative()).value_or(0.0);
+  } else {
+    params.bearing_stiffness_N_per_m = table.Number("bearing_stiffness_N_per_m", Positive());
+    params.bearing_damping_N_s_per_m = table.Number("bearing_damping_N_s_per_m", NonNegative());
+  }
+  if (bilinear && hunt_crossley) {
+    params.ribbon_stiffness_N_per_m =
+        table.OptionalNumber("ribbon_stiffness_N_per_m", Positive()).value_or(0.0);
+    params.ribbon_damping_N_s_per_m =
+        table.OptionalNumber("ribbon_damping_N_s_per_m", NonNegative()).value_or(0.0);
+    params.ribbon_crushing_m =
+        table.OptionalNumber("ribbon_crushing_m", NonNegative()).value_or(0.0);
+  } else if (bilinear) {
     params.ribbon_stiffness_N_per_m = table.Number("ribbon_stiffness_N_per_m", Positive());
     params.ribbon_damping_N_s_per_m = table.Number("ribbon_damping_N_s_per_m", NonNegative());
     params.ribbon_crushing_m = table.Number("ribbon_crushing_m", NonNegative());

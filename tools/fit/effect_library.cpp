@@ -645,7 +645,8 @@ std::optional<LinearRibbon> LinearRibbonOf(const TdbParams& t) {
   }
   if (t.model() != TdbModelKind::kContactLaw) return std::nullopt;
   const ContactLawParams& c = t.contact_law();
-  if (c.ribbon == ContactLawRibbon::kBilinear &&
+  // A rigid race met by Hunt-Crossley's law declares no ribbon to replace.
+  if (c.ribbon == ContactLawRibbon::kBilinear && c.normal_law == ContactLawNormal::kBilinear &&
       (c.ribbon_damping_N_s_per_m > 0.0 || c.outer_race_mass_kg > 0.0)) {
     return LinearRibbon{"tdb." + t.name + ".contact_law.", c.ribbon_stiffness_N_per_m,
                         c.ribbon_damping_N_s_per_m};
