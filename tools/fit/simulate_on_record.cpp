@@ -94,54 +94,6 @@ std::pair<double, double> LocalFit(const MeasuredRecord& r, int c, double t0, do
 
 }  // namespace
 
-double RecordTriggerTime(const MeasurementParams& m, const MeasuredRecord& r) {
-  if (m.trigger_time_s) return *m.trigger_time_s;
-  std::vector<int> currents;
-  for (const MeasurementChannel& ch : m.channels) {
-    if (ch.quantity == MeasuredQuantity::kCurrent) currents.push_back(r.Column(ch.column));
-  }
-  if (currents.empty()) {
-    throw std::runtime_error(
-        "measurement.trigger = \"detect\" needs current channels; give trigger_time_s");
-  }
-  // The levitated baseline and its noise from the record's first tenth.
-  const std::size_t rows = r.time_s.size();
-  const std::size_t quiet = std::max<std::size_t>(rows / 10, 2);
-  double best = std::numeric_limits<double>::infinity();
-  for (const int c : currents) {
-    const std::vector<double>& v = r.values[c];
-    double mean = 0, var = 0;
-    for (std::size_t j = 0; j < quiet; ++j) mean += v[j];
-    mean /= static_cast<double>(quiet);
-    for (std::size_t j = 0; j < quiet; ++j) var += (v[j] - mean) * (v[j] - mean);
-    const double sigma = std::sqrt(var / static_cast<double>(quiet));
-    // Far out (the current is going away) and never back: then walk back to where it left
-    // the noise band.
-    const double far = std::max(8 * sigma, 0.2 * std::abs(mean));
-    const double band = 3 * sigma;
-    std::size_t last_near = rows;  // last row within `far` of the baseline
-    for (std::size_t j = rows; j-- > quiet;) {
-      if (std::abs(v[j] - mean) <= far) {
-        last_near = j;
-        break;
-      }
-    }
-    if (last_near + 1 >= rows) continue;  // this current never leaves
-    std::size_t j = last_near;
-    while (j > quiet && std::abs(v[j] - mean) > band) --j;
-    // The power went between row j (still levitated) and row j + 1: the middle of the interval
-    // is the unbiased estimate, wrong by half a sample at most where either end may be a whole
-    // one (a sampler that reads after the cut puts it on row j + 1, one before it on row j).
-    best = std::min(best, 0.5 * (r.time_s[j] + r.time_s[j + 1]));
-  }
-  if (!std::isfinite(best)) {
-    throw std::runtime_error(
-        "measurement.trigger = \"detect\": no current leaves its levitated level in the record; "
-        "give trigger_time_s");
-  }
-  return best;
-}
-
 double OpenLoopStartHalfWindow(const MeasuredRecord& record) {
   return std::max(4.0 * record.SampleInterval(), 1e-3);
 }

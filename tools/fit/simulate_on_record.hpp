@@ -18,6 +18,7 @@
 #include "rt_core/model_params.hpp"
 #include "rt_core/simulator.hpp"
 #include "tools/fit/levitated_prefix_cache.hpp"
+#include "tools/fit/record_trigger_detect.hpp"
 #include "tools/fit/reduced_rotor_cache.hpp"
 
 namespace ambdrop {
@@ -135,10 +136,6 @@ struct SimulatedRecord {
   RecordRunOptions options;
   bool state_from_record = false;
 };
-
-/// The trigger time: given, or where every measured current starts to fall away from its
-/// pre-trigger level for good (needs current channels). Throws std::runtime_error if neither.
-double RecordTriggerTime(const MeasurementParams& measurement, const MeasuredRecord& record);
 
 /// Whether the run is closed loop (the declared controller levitates the rotor until the
 /// trigger) for these params, options and measurement: never with power_loss = "from_record",
