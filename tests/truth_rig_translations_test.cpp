@@ -4,8 +4,9 @@
 // currents: each AMB carries its share of the weight (moments about the centre of mass),
 // through the differential electromagnet law at the centre, the generator's own statics against
 // ambdrop's. rigid_fourdof_c is the 4-DOF rig (its races' sag: truth_fourdof_translation_test);
-// rigid_rotor_e and rigid_fourdof_f were made in session 50, after the fit's rules, to try
-// them on rigs none was made on.
+// rigid_rotor_e and rigid_fourdof_f were made in session 50, rigid_hc_g (contact-law TDBs with
+// Hunt-Crossley's law, 25.6 kHz records) in session 52, after the fit's rules, to try them on
+// rigs none was made on.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -99,16 +100,19 @@ TEST_P(TruthRigTranslation, BothCodesHoldTheRotorWithTheSameCurrents) {
 }
 
 // The entries: the rigid rotor's 4, the coast-down's one loss (none on c), the power loss's
-// numbers (c: its hold and time constant),
+// numbers (c and g: its hold and time constant),
 // per AMB 4 (constant, bias, gap, station), per sensor 5 (station, gain and offset per axis),
-// the PID's 7; per contact-law TDB 9 (the inner-race radius given), per 4-DOF TDB 15 (its
+// the PID's 7; per contact-law TDB 9 (the inner-race radius given; on g, 8: the race rolls at
+// the journal's radius, and its Hunt-Crossley contact's two numbers stand in place of the
+// linear contact's two), per 4-DOF TDB 15 (its
 // contact's two numbers, both races' masses, the bearing's and the ribbon's stiffness and
 // damping in place of the linear contact's two).
 INSTANTIATE_TEST_SUITE_P(
     Rigs, TruthRigTranslation,
     ::testing::Values(TranslatedRig{"rigid_fourdof_c", 4 + 0 + 2 + 8 + 10 + 7 + 30},
                       TranslatedRig{"rigid_rotor_e", 4 + 1 + 1 + 8 + 10 + 7 + 18},
-                      TranslatedRig{"rigid_fourdof_f", 4 + 1 + 1 + 8 + 10 + 7 + 30}),
+                      TranslatedRig{"rigid_fourdof_f", 4 + 1 + 1 + 8 + 10 + 7 + 30},
+                      TranslatedRig{"rigid_hc_g", 4 + 1 + 2 + 8 + 10 + 7 + 16}),
     [](const ::testing::TestParamInfo<TranslatedRig>& info) { return info.param.name; });
 
 }  // namespace

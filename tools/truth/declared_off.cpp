@@ -268,6 +268,15 @@ std::vector<DeclaredEntry> DeclaredOffEntries(const Rig& rig) {
         [i](Rig* r) { return &r->tdbs[i].race_inertia_kg_m2; });
     add(g + "race.viscous_drag_N_m_s", K::kFactor, k + "spin.rotational_damping_N_m_s",
         [i](Rig* r) { return &r->tdbs[i].race_viscous_drag_N_m_s; });
+    if (!rig.tdbs[i].four_dof.enabled && rig.tdbs[i].contact_law == ContactLaw::kHuntCrossley) {
+      // A rigid race met by Hunt-Crossley's law: ambdrop's contact-law TDB with that normal law.
+      const std::string h = k + "contact_law.hunt_crossley.";
+      add(g + "contact.stiffness_N_per_m_n", K::kFactor, h + "stiffness_N_per_m_n",
+          [i](Rig* r) { return &r->tdbs[i].contact_stiffness; });
+      add(g + "contact.damping_s_per_m", K::kFactor, h + "damping_s_per_m",
+          [i](Rig* r) { return &r->tdbs[i].contact_damping; });
+      continue;
+    }
     if (!rig.tdbs[i].four_dof.enabled) {
       add(g + "contact.stiffness_N_per_m", K::kFactor, k + "contact_law.bearing_stiffness_N_per_m",
           [i](Rig* r) { return &r->tdbs[i].contact_stiffness; });
