@@ -12,6 +12,7 @@
 #include "io/config/config_variants.hpp"
 #include "rt_core/limits.hpp"
 #include "rt_core/model.hpp"
+#include "rt_core/tdb_common.hpp"
 #include "tools/fit/key_effects.hpp"
 #include "tools/fit/registry_candidates.hpp"
 
@@ -632,20 +633,44 @@ struct LinearRibbon {
   std::string table;  ///< "tdb.NAME.four_dof." or "tdb.NAME.contact_law."
   double stiffness_N_per_m = 0.0;
   double damping_N_s_per_m = 0.0;
+  /// No ribbon declared (a rigid race met by Hunt-Crossley's law): the stiffness is the
+  /// contact's own where it carries the TDB's share of the weight, and the race that would ride
+  /// a hidden ribbon has its own mass, race_mass_kg (a ribbon law writes it).
+  bool derived = false;
+  double race_mass_kg = 0.0;
 };
 
 // The linear ribbon a ribbon law could replace, if the TDB has one: a 4-DOF TDB with a
 // Kelvin-Voigt ribbon, or a contact-law TDB with its bilinear law. In series with the contact
 // a massless race needs the ribbon's damping positive; a declared outer_race_mass_kg does not
 // (rt_core/contact_law_tdb.hpp).
-std::optional<LinearRibbon> LinearRibbonOf(const TdbParams& t) {
+std::optional<LinearRibbon> LinearRibbonOf(const TdbParams& t, double weight_share_N) {
   if (t.model() == TdbModelKind::kFourDof && t.four_dof().ribbon == RibbonLaw::kKelvinVoigt) {
     return LinearRibbon{"tdb." + t.name + ".four_dof.", t.four_dof().kelvin_voigt.stiffness_N_per_m,
                         t.four_dof().kelvin_voigt.damping_N_s_per_m};
   }
   if (t.model() != TdbModelKind::kContactLaw) return std::nullopt;
   const ContactLawParams& c = t.contact_law();
-  // A rigid race met by Hunt-Crossley's law declares no ribbon to replace.
+  if (c.ribbon == ContactLawRibbon::kBilinear && c.normal_law == ContactLawNormal::kHuntCrossley) {
+    // A rigid race met by Hunt-Crossley's law declares no ribbon: a hidden one under it is
+    // searched on the contact's own stiffness where it carries its share W of the weight,
+    // n kn delta^(n-1) = n W / delta at delta = (W / kn)^(1/n) (Jarroux 2019 Eq. (10)), and
+    // the race rides it with its own mass (as model #3's outer race, Sec. 4.1, no viscous part
+    // beside the Dahl element), taken as a thin ring's, Ieq / Rir^2, from the declared race
+    // inertia: the drop's start does not decide the mass beside the slipping stiffness (a
+    // record of the independent rig g: 0.158 or 0.3 kg, both at the noise).
+    const HuntCrossleyParams& h = c.hunt_crossley;
+    const double radius = InnerRaceRadius(t);
+    if (!(weight_share_N > 0.0) || !(h.stiffness_N_per_m_n > 0.0) || !t.spin.enabled ||
+        !(t.spin.inertia_kg_m2 > 0.0) || !(radius > 0.0)) {
+      return std::nullopt;
+    }
+    const double delta = std::pow(weight_share_N / h.stiffness_N_per_m_n, 1.0 / h.exponent);
+    LinearRibbon r{"tdb." + t.name + ".contact_law.", h.exponent * weight_share_N / delta, 0.0};
+    r.derived = true;
+    r.race_mass_kg = t.spin.inertia_kg_m2 / (radius * radius);
+    return r;
+  }
   if (c.ribbon == ContactLawRibbon::kBilinear && c.normal_law == ContactLawNormal::kBilinear &&
       (c.ribbon_damping_N_s_per_m > 0.0 || c.outer_race_mass_kg > 0.0)) {
     return LinearRibbon{"tdb." + t.name + ".contact_law.", c.ribbon_stiffness_N_per_m,
@@ -737,6 +762,10 @@ Effect RibbonDryFriction(const TdbParams& t, const LinearRibbon& kv, double weig
                                        Set(dahl + "lower_hardening_N", hardening_N),
                                        Set(dahl + "lower_hardening_rate_per_m", rate_per_m)};
         if (race_mass) lines.push_back(Set(kv.table + "ribbon_damping_N_s_per_m", 0.0));
+        if (kv.derived) {
+          lines.push_back(Set(kv.table + "outer_race_mass_kg", kv.race_mass_kg));
+          lines.push_back(Set(kv.table + "ribbon_damping_N_s_per_m", 0.0));
+        }
         return lines;
       });
 }
@@ -894,10 +923,11 @@ std::vector<Effect> EffectLibrary(const ConfigVariants& variants, bool only_fami
   // Ribbon laws replace a declared linear ribbon (issue 15: the contact-law TDB's too).
   const double share_N = RotorWeightN(declared, rotor) / static_cast<double>(declared.tdbs.size());
   for (const TdbParams& t : declared.tdbs) {
-    const std::optional<LinearRibbon> ribbon = LinearRibbonOf(t);
+    const std::optional<LinearRibbon> ribbon = LinearRibbonOf(t, share_N);
     if (!ribbon) continue;
     effects.push_back(RibbonDryFriction(t, *ribbon, share_N));
-    effects.push_back(RibbonCrossCoupling(t, *ribbon));
+    // Cross-coupling needs a declared ribbon's stiffness: it fits eta alone.
+    if (!ribbon->derived) effects.push_back(RibbonCrossCoupling(t, *ribbon));
   }
   if (only_families) return effects;
   std::vector<Effect> keys = RegistryCandidates(variants, effects);

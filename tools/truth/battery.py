@@ -142,7 +142,12 @@ SWITCH_LEAVES = {"enabled", "current_law", "model", "ribbon", "law"}
 # (beta and the hardening envelopes' a, b, c, d; the threshold's scale) is the fit's own, tied to
 # the three numbers it fits (tools/fit/effect_library.cpp, RibbonDryFriction): its slipping
 # threshold and slipping stiffness are compared, the form as little as a sign's regularisation.
+# The mass a ribbon carries (outer_race_mass_kg) is the candidate's assumption where the rig
+# declares none, the race's own (a thin ring's, from its inertia), not a fitted number: the
+# drop's start does not decide it (rigid_hc_g's Dahl record of seed 13: 0.158 or 0.3 kg, both at
+# the noise).
 NOT_COMPARED_LEAVES = SWITCH_LEAVES | {"position_m", "mass_kg", "beta_per_m", "threshold_scale",
+                                       "outer_race_mass_kg",
                                        "upper_hardening_N", "upper_hardening_rate_per_m",
                                        "lower_hardening_N", "lower_hardening_rate_per_m"}
 
