@@ -4,7 +4,7 @@
 //
 //   [measurement]
 //   sample_rate_Hz = 20000.0        # the record's; its time column is checked against it
-//   trigger_time_s = 0.2            # or: trigger = "detect" (from the coil currents)
+//   trigger_time_s = 0.2            # or: trigger = "detect" (tools/fit/record_trigger_detect.hpp)
 //   time_column = "time_ms"         # default "t"; the record's first column
 //   time_unit = "ms"                # default "s"; or "us"
 //   power_loss = "from_record"      # default "declared": the coil-current channels drive the
