@@ -58,6 +58,23 @@ print(f"fit: {f['verdict']}, x {p['x_m']['value']:.3g} m, y {p['y_m']['value']:.
       f"overall {before['overall']:.3g} -> {after['overall']:.3g}")
 PY
 grep -q "Verdict: explained" fit/report.md || fail "report.md has no verdict"
+python3 -c 'import json, sys; assert json.load(open(sys.argv[1]))["windows"]["trigger_detected"] is False' \
+  fit/fit.json || fail "fit.json: the given trigger reported as detected"
+
+# The same record with the trigger left to the record (its currents cut at once): found within
+# half a sample, and fit.json and report.md say it was found, not given.
+grep -q '^trigger_time_s = ' declared.toml || fail "measure wrote no trigger_time_s"
+sed 's/^trigger_time_s = .*/trigger = "detect"/' declared.toml >detect.toml
+"$tool" fit detect.toml "${timing[@]}" --measured drop.csv --out fit_detect >fit_detect.txt ||
+  fail "fit with trigger = detect exited $?: $(cat fit_detect.txt)"
+python3 - fit_detect/fit.json <<'PY'
+import json, sys
+w = json.load(open(sys.argv[1]))["windows"]
+assert w["trigger_detected"] is True, w
+assert abs(w["trigger_s"] - 0.1) <= 0.5 / 20000 + 1e-12, w
+PY
+grep -q "The trigger was found in the record at" fit_detect/report.md ||
+  fail "report.md does not say the trigger was found in the record"
 # The fitted effect's --set lines, as the report prints them, are what the config takes: read
 # back through `ambdrop keys`, the offsets are the fitted values to the last bit.
 set_args=()

@@ -194,6 +194,7 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
   json.Key("windows").BeginObject(true);
   json.Key("start_s").Number(o.before.windows.start_s);
   json.Key("trigger_s").Number(o.before.windows.trigger_s);
+  json.Key("trigger_detected").Bool(m.detect_trigger);
   json.Key("impact_end_s").Number(o.before.windows.impact_end_s);
   json.Key("settled_start_s").Number(o.before.windows.settled_start_s);
   json.Key("end_s").Number(o.before.windows.end_s);
@@ -398,6 +399,16 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
           : "the whole record",
       s.rms_before, s.rms_after, s.noise_floor, AboveNoise(s.rms_before, s.noise_floor),
       AboveNoise(s.rms_after, s.noise_floor));
+  if (m.detect_trigger) {
+    // A late trigger shifts every later sample: the verdict depends on it.
+    md += fmt::format(
+        "The trigger was found in the record at {:.6g} s (measurement.trigger = \"detect\", "
+        "tools/fit/record_trigger_detect.hpp): where the power loss shows at once (currents cut) "
+        "within half a sample, where it shows slowly (a hold before the fall, a slow decay or "
+        "ramp) only once its effect leaves the noise, later by that time. Give trigger_time_s "
+        "where the acquisition knows it.\n\n",
+        o.before.windows.trigger_s);
+  }
   md += FromRecordNote(params, m);
   if (m.trigger_state_from_record) {
     md += fmt::format("The state at the trigger (measurement.trigger_state = \"record\"): {}.\n\n",
