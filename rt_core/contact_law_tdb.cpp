@@ -47,8 +47,7 @@ SeriesSolution SolveSeries(const TdbParams& p, const JournalMotion& j, const Con
     // Jarroux 2019 Eq. (10) on the journal/race penetration: fn = E (1 + 3/2 alpha (v_j - u')·n),
     // E = kn delta^n, linear in u'_n as Eq. (12) is, so (c + 3/2 alpha E) u'_n =
     // E (1 + 3/2 alpha v_j·n) - R·n.
-    const double elastic = HuntCrossleyForce(
-        {c.hunt_crossley.stiffness_N_per_m_n, c.hunt_crossley.exponent, 0.0}, delta, 0.0);
+    const double elastic = HuntCrossleyElastic(c.hunt_crossley, delta);
     const double viscous = 1.5 * c.hunt_crossley.damping_s_per_m * elastic;
     rate_n = (elastic + viscous * g.radial_speed_m_s - ribbon_n) / (damping_N_s_per_m + viscous);
     s.normal_N = elastic + viscous * (g.radial_speed_m_s - rate_n);
