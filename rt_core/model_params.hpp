@@ -17,6 +17,9 @@ struct SensorNoiseParams {
   bool enabled = false;
   double std_dev_m = 0.0;
   std::uint64_t seed = 1;
+  /// The sensor electronics' first-order bandwidth the noise passes (Hz): a coloured noise of
+  /// the same std_dev_m, an AR(1) sequence at the sample period (0: white, one draw a sample).
+  double bandwidth_Hz = 0.0;
   friend bool operator==(const SensorNoiseParams&, const SensorNoiseParams&) = default;
 };
 

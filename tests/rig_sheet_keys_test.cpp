@@ -103,6 +103,11 @@ TEST(RigSheetKeys, DisabledSensorNoiseNeedsNoStdDev) {
   EXPECT_THAT(ConfigErrorOf(table + "enabled = false\nstd_dev_m = -1e-6\n"),
               HasSubstr("key 'sensor.a.noise.std_dev_m': expected a non-negative number"));
   EXPECT_THAT(ConfigErrorOf(table + "enabled = true\n"), HasSubstr("missing key 'sensor.a.noise"));
+  // The electronics' bandwidth the noise passes: optional (white), never negative.
+  EXPECT_EQ(ConfigErrorOf(table + "enabled = true\nstd_dev_m = 1e-7\nbandwidth_Hz = 2000.0\n"),
+            "no error");
+  EXPECT_THAT(ConfigErrorOf(table + "enabled = true\nstd_dev_m = 1e-7\nbandwidth_Hz = -1.0\n"),
+              HasSubstr("key 'sensor.a.noise.bandwidth_Hz': expected a non-negative number"));
 }
 
 TEST(RigSheetKeys, DisabledUnbalanceNeedsNoMass) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "controller_if/boundary/portable_random.hpp"
 #include "controller_if/boundary/sensor_emulator.hpp"
@@ -178,6 +179,43 @@ TEST(SensorEmulator, NoiseHasItsStatisticsAndRepeats) {
   EXPECT_NEAR(std::sqrt(sum2 / n) / 1e-6, 1.0, 0.01);
   // x and y draw from different streams.
   EXPECT_NE(ra.reading_m[0][0], ra.reading_m[0][1]);
+}
+
+TEST(SensorEmulator, NoiseThroughABandwidthKeepsItsSigmaAndCorrelatesAsTheLowPass) {
+  // White noise through a first-order low-pass at fc, sampled every T, is AR(1) with lag-k
+  // correlation exp(-2 pi fc T k) and the variance of the draws (the stationary law kept).
+  SensorParams p;
+  p.noise = {true, 1e-6, 7, 2000.0};
+  const double period = 5e-5;
+  SensorEmulator s({p}, period);
+  SensorReadings r;
+  const int n = 200000;
+  std::vector<double> v(n);
+  for (int k = 0; k < n; ++k) {
+    s.Sample(At(0.0, 0.0), &r);
+    v[k] = r.reading_m[0][0];
+  }
+  const auto correlation = [&](int lag) {
+    double c = 0.0, var = 0.0;
+    for (int k = 0; k + lag < n; ++k) c += v[k] * v[k + lag];
+    for (const double x : v) var += x * x;
+    return c / var * n / (n - lag);
+  };
+  double var = 0.0;
+  for (const double x : v) var += x * x;
+  EXPECT_NEAR(std::sqrt(var / n) / 1e-6, 1.0, 0.02);
+  for (const int lag : {1, 2, 5}) {
+    EXPECT_NEAR(correlation(lag), std::exp(-2.0 * std::numbers::pi * 2000.0 * period * lag), 0.01)
+        << "lag " << lag;
+  }
+  // White (bandwidth 0) is uncorrelated from sample to sample, as before.
+  p.noise.bandwidth_Hz = 0.0;
+  SensorEmulator w({p}, period);
+  for (int k = 0; k < n; ++k) {
+    w.Sample(At(0.0, 0.0), &r);
+    v[k] = r.reading_m[0][0];
+  }
+  EXPECT_NEAR(correlation(1), 0.0, 0.01);
 }
 
 TEST(SensorEmulator, AdcCounts) {

@@ -41,6 +41,12 @@ SensorEmulator::SensorEmulator(const std::vector<SensorParams>& sensors, double 
       const double one_minus_e = -std::expm1(-period_s / tau);
       filter_[i] = {e, 1.0 - r * one_minus_e, r * one_minus_e - e};
     }
+    // A first-order low-pass of white noise sampled every T is AR(1) with a = exp(-2 pi fc T);
+    // r keeps its variance that of the white draw (the stationary law from the first sample).
+    if (p.noise.bandwidth_Hz > 0.0) {
+      const double a = std::exp(-2.0 * std::numbers::pi * p.noise.bandwidth_Hz * period_s);
+      colour_[i] = {a, std::sqrt(-std::expm1(2.0 * std::log(a)))};
+    }
     for (int axis = 0; axis < 2; ++axis) {
       Channel& c = channels_[i][axis];
       c.delay_samples = delay;
@@ -90,7 +96,17 @@ void SensorEmulator::Sample(const Observation& obs, SensorReadings* out) noexcep
       c.last_input = v;
       c.primed = true;
       v = c.filtered;
-      if (p.noise.enabled) v += p.noise.std_dev_m * c.noise.StandardNormalApprox();
+      if (p.noise.enabled) {
+        const double w = c.noise.StandardNormalApprox();
+        if (p.noise.bandwidth_Hz > 0.0) {
+          const NoiseColour& k = colour_[i];
+          c.coloured = c.primed_noise ? k.a * c.coloured + k.r * w : w;
+          c.primed_noise = true;
+          v += p.noise.std_dev_m * c.coloured;
+        } else {
+          v += p.noise.std_dev_m * w;
+        }
+      }
       if (p.quantisation_m > 0.0) v = p.quantisation_m * std::nearbyint(v / p.quantisation_m);
       out->reading_m[i][axis] = v;
       out->counts[i][axis] =

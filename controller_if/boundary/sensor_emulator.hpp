@@ -35,6 +35,8 @@ class SensorEmulator {
     double last_input = 0.0;  ///< the low-pass's input one sample ago
     bool primed = false;
     PortableRandom noise;
+    double coloured = 0.0;  ///< the noise's AR(1) state, in units of std_dev_m
+    bool primed_noise = false;
   };
   std::vector<SensorParams> params_;
   std::vector<std::array<Channel, 2>> channels_;
@@ -45,6 +47,12 @@ class SensorEmulator {
     double b1 = 0.0;
   };
   std::array<Filter, kMaxSensors> filter_{};
+  /// A sensor's noise colour: n_k = a n_(k-1) + r w_k, r = sqrt(1 - a^2) (white: 0, 1).
+  struct NoiseColour {
+    double a = 0.0;
+    double r = 1.0;
+  };
+  std::array<NoiseColour, kMaxSensors> colour_{};
 };
 
 }  // namespace ambdrop

@@ -84,12 +84,13 @@ SensorParams ReadSensor(const std::string& name, const TableReader& table,
   s.offset_y_m = per_axis("offset_y_m", s.offset_m);
   s.quantisation_m = table.Number("quantisation_m", NonNegative(), s.quantisation_m);
   if (const auto noise = table.OptionalTable("noise")) {
-    noise->AllowOnly({"enabled", "std_dev_m", "seed"});
+    noise->AllowOnly({"enabled", "std_dev_m", "seed", "bandwidth_Hz"});
     s.noise.enabled = noise->Bool("enabled", false);
     // A disabled table does not demand its number; given, it is still checked.
     s.noise.std_dev_m = s.noise.enabled ? noise->Number("std_dev_m", NonNegative())
                                         : noise->Number("std_dev_m", NonNegative(), 0.0);
     s.noise.seed = static_cast<std::uint64_t>(noise->Integer("seed", 0, 2147483647, 1));
+    s.noise.bandwidth_Hz = noise->Number("bandwidth_Hz", NonNegative(), 0.0);
   }
   if (const auto runout = table.OptionalTable("runout")) {
     runout->AllowOnly(

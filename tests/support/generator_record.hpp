@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "drop_run.hpp"
@@ -17,12 +18,15 @@
 namespace ambdrop::testing {
 
 /// The record of `effect` drawn from `seed` on the generator's rig `rig` (tools/truth/rigs/
-/// RIG.json), in acquisition units through `m`; `truth`, if given, receives what was hidden.
+/// RIG.json), in acquisition units through `m`; `truth`, if given, receives what was hidden;
+/// `adjust`, if given, changes the rig sheet first (e.g. its acquisition).
 inline MeasuredRecord GeneratorRecord(const std::string& rig_name, const std::string& effect,
                                       std::uint64_t seed, const MeasurementParams& m,
-                                      ambdrop_truth::Truth* truth = nullptr) {
+                                      ambdrop_truth::Truth* truth = nullptr,
+                                      const std::function<void(ambdrop_truth::Rig*)>& adjust = {}) {
   ambdrop_truth::Rig rig = ambdrop_truth::ReadRig(std::string(AMBDROP_SOURCE_DIR) +
                                                   "/tools/truth/rigs/" + rig_name + ".json");
+  if (adjust) adjust(&rig);
   const ambdrop_truth::Truth hidden = ambdrop_truth::ApplyEffect(effect, seed, &rig);
   if (truth != nullptr) *truth = hidden;
   const ambdrop_truth::RunResult run = ambdrop_truth::RunDrop(rig, seed, {});

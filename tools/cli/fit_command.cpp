@@ -309,6 +309,7 @@ int FitOneRecord(const FitOptions& options, const std::string& measured_path,
   outcome.after = fit->residual_after;
   outcome.selection = &selection;
   outcome.step = &fit->step;
+  outcome.sensor_noise = &fit->sensor_noise;
   outcome.library = &fit->library;
   outcome.chosen = fit->chosen;
   outcome.wall_time_s =

@@ -74,6 +74,7 @@ std::unique_ptr<FitResult> FitRecord(const ConfigVariants& config, const Measure
   }
   fit->measurement = measurement;
   const RecordCost cost(declared, measurement, record, run);
+  fit->sensor_noise = cost.sensor_noise();
   for (const std::size_t c : cost.left_out()) {
     fit->left_out.push_back(
         fmt::format("'{}' ({})", m.channels[c].column, m.channels[c].Describe(declared)));

@@ -37,6 +37,9 @@ struct FitResult {
   /// record (trigger_state = "record_start") where the model's own state departed there and
   /// the lead window's estimate agreed (FitRecord).
   MeasurementParams measurement;
+  /// The record's displacement noise before the trigger, white or coloured: what the model's
+  /// controller answers wherever the fit draws the rotor's jitter.
+  SensorNoise sensor_noise;
 };
 
 /// Throws (std::runtime_error and its kin) when the record cannot be used with the model, or

@@ -174,6 +174,13 @@ std::string FitJson(const FitOutcome& o, const ModelParams&, const MeasurementPa
     json.Key("first_in_record_mode").Integer(s.jitter.first_match);
     json.EndObject();
   }
+  if (o.sensor_noise != nullptr) {
+    json.Key("sensor_noise").BeginObject();
+    json.Key("sigma_m").Number(o.sensor_noise->sigma_m);
+    json.Key("bandwidth_Hz").Number(o.sensor_noise->bandwidth_Hz);
+    json.Key("second_difference_sigma_m").Number(o.sensor_noise->white_sigma_m);
+    json.EndObject();
+  }
   json.Key("noise_floor").Number(s.noise_floor);
   json.Key("model_floor").Number(s.model_floor);
   json.Key("step_sensitivity").Number(s.step_sensitivity);
@@ -408,6 +415,15 @@ void WriteFitReport(const std::filesystem::path& dir, const FitOutcome& o,
         "ramp) only once its effect leaves the noise, later by that time. Give trigger_time_s "
         "where the acquisition knows it.\n\n",
         o.before.windows.trigger_s);
+  }
+  if (o.sensor_noise != nullptr && o.sensor_noise->bandwidth_Hz > 0.0) {
+    md += fmt::format(
+        "The displacement sensors' noise is coloured (tools/fit/sensor_noise_colour.hpp): its "
+        "levitated spectrum falls as a first-order low-pass at {:.4g} Hz, sigma {:.3g} m, where "
+        "second differences read {:.3g} m. The model's controller answers noise of that colour "
+        "wherever the rotor's jitter is drawn (sensor.NAME.noise.bandwidth_Hz), and each "
+        "displacement is judged against that sigma.\n\n",
+        o.sensor_noise->bandwidth_Hz, o.sensor_noise->sigma_m, o.sensor_noise->white_sigma_m);
   }
   md += FromRecordNote(params, m);
   if (m.trigger_state_from_record) {

@@ -10,6 +10,7 @@
 #include "tools/fit/fit_step.hpp"
 #include "tools/fit/model_discrepancy.hpp"
 #include "tools/fit/residuals.hpp"
+#include "tools/fit/sensor_noise_colour.hpp"
 
 namespace ambdrop {
 
@@ -25,6 +26,8 @@ struct FitOutcome {
   double wall_time_s = 0.0;
   /// The declared model against the rig (tools/fit/model_discrepancy.hpp); may be null.
   const Discrepancy* discrepancy = nullptr;
+  /// The record's displacement noise (FitResult::sensor_noise); may be null.
+  const SensorNoise* sensor_noise = nullptr;
 };
 
 /// A Discrepancy as a JSON object (fit.json's `discrepancy`, shared.json's per record).

@@ -118,6 +118,28 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
   trigger_s_ = RecordTriggerTime(measurement, record);
   if (!run_.rotor_cache) run_.rotor_cache = std::make_shared<ReducedRotorCache>();
   if (!run_.prefix_cache) run_.prefix_cache = std::make_shared<LevitatedPrefixCache>();
+  // The displacement noise before the trigger, white or coloured: its bandwidth goes with
+  // every jitter drawn on this cost's runs.
+  {
+    std::size_t last = 0;
+    while (last < record.time_s.size() && record.time_s[last] < trigger_s_) ++last;
+    std::vector<SensorNoise> each;
+    std::vector<std::size_t> channel_of;
+    for (std::size_t c = 0; c < measurement_.channels.size(); ++c) {
+      const MeasurementChannel& ch = measurement_.channels[c];
+      const int col = record.Column(ch.column);
+      if (ch.quantity != MeasuredQuantity::kDisplacement || col < 0) continue;
+      each.push_back(ChannelSensorNoise(record.time_s, record.values[col], 0, last,
+                                        declared.simulation.spin_speed_rad_s));
+      channel_of.push_back(c);
+    }
+    sensor_noise_ = MedianSensorNoise(each);
+    run_.jitter_bandwidth_Hz = sensor_noise_.bandwidth_Hz;
+    coloured_sigma_.assign(measurement_.channels.size(), 0.0);
+    for (std::size_t k = 0; k < each.size() && sensor_noise_.bandwidth_Hz > 0.0; ++k) {
+      if (each[k].bandwidth_Hz > 0.0) coloured_sigma_[channel_of[k]] = each[k].sigma_m;
+    }
+  }
   const bool closed = ClosedLoop(declared, measurement, run);
   const double t0 = record.time_s.front();
   const double t_end = record.time_s.back();
@@ -142,16 +164,7 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
   const std::size_t settled_row = first_row_at(settled_from_s_);
   // The noise the record's controller answers: its displacements' (median over the sensors).
   // (Closed loop, the only kind with a spectrum, compares from the record's first row.)
-  if (spectrum) {
-    std::vector<const std::vector<double>*> columns;
-    for (const MeasurementChannel& ch : measurement.channels) {
-      const int col = record.Column(ch.column);
-      if (ch.quantity == MeasuredQuantity::kDisplacement && col >= 0) {
-        columns.push_back(&record.values[col]);
-      }
-    }
-    spectrum_noise_m_ = MedianNoiseSigma(columns, trigger_row);
-  }
+  if (spectrum) spectrum_noise_m_ = sensor_noise_.sigma_m;
   for (std::size_t c = 0; c < measurement.channels.size(); ++c) {
     const MeasurementChannel& ch = measurement.channels[c];
     const int col = record.Column(ch.column);
@@ -349,6 +362,8 @@ std::vector<double> RecordCost::ChannelNoiseSse() const {
     const std::vector<double>& all = record_.values[column_[c]];
     sigma[c] = rows[c].size() >= 10 ? NoiseSigma(rows[c], 0, rows[c].size())
                                     : NoiseSigma(all, 0, all.size());
+    // Second differences understate a coloured noise; its levitated estimate holds throughout.
+    if (c < coloured_sigma_.size() && coloured_sigma_[c] > 0.0) sigma[c] = coloured_sigma_[c];
   }
   std::vector<double> expected(column_.size(), 0.0);
   for (const Sample& s : samples_) expected[s.channel] += std::pow(sigma[s.channel] * s.weight, 2);

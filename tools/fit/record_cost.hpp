@@ -22,6 +22,7 @@
 #include "io/files/measured_csv.hpp"
 #include "rt_core/model_params.hpp"
 #include "tools/fit/levitated_spectrum.hpp"
+#include "tools/fit/sensor_noise_colour.hpp"
 #include "tools/fit/simulate_on_record.hpp"
 
 namespace ambdrop {
@@ -124,6 +125,10 @@ class RecordCost {
   /// (m) the model's controller answers for it (0: none compared).
   std::size_t spectra() const { return spectra_.size(); }
   double spectrum_noise_m() const { return spectrum_noise_m_; }
+  /// The record's displacement noise before the trigger, white or coloured (the median over
+  /// its displacement channels, tools/fit/sensor_noise_colour.hpp); its bandwidth goes with
+  /// every jitter drawn on this cost's runs (run_options().jitter_bandwidth_Hz).
+  const SensorNoise& sensor_noise() const { return sensor_noise_; }
   /// Noise draws of the model whose mean spectrum is compared.
   static constexpr int kSpectrumRuns = 4;
 
@@ -172,6 +177,10 @@ class RecordCost {
   std::vector<Spectrum> spectra_;
   std::size_t spectrum_bands_ = 0;
   double spectrum_noise_m_ = 0.0;
+  SensorNoise sensor_noise_;
+  /// Per measurement channel: a coloured displacement channel's noise sigma (m), which its
+  /// second differences understate; 0: NoiseSigma's, as for white noise.
+  std::vector<double> coloured_sigma_;
   std::vector<int> column_;    // record column per measurement channel
   std::vector<double> range_;  // per measurement channel; 0 if not compared
 };

@@ -193,6 +193,7 @@ SimulatedRecord RunOnRecord(const ModelParams& declared, const MeasurementParams
     s.noise.enabled = closed && options.jitter_sigma_m > 0.0;
     s.noise.std_dev_m = options.jitter_sigma_m;
     s.noise.seed = options.jitter_seed * 7919u + i;
+    s.noise.bandwidth_Hz = options.jitter_bandwidth_Hz;
     s.quantisation_m = 0.0;
   }
   int rotor_speed_column = -1;

@@ -83,6 +83,9 @@ struct RecordRunOptions {
   /// The predicted readings stay the expected ones (noise off).
   double jitter_sigma_m = 0.0;
   std::uint64_t jitter_seed = 1;
+  /// That noise's first-order bandwidth (SensorNoiseParams::bandwidth_Hz), as the record's
+  /// sensors show it (tools/fit/sensor_noise_colour.hpp); 0: white.
+  double jitter_bandwidth_Hz = 0.0;
   /// Keep the modal positions and velocities at every simulated row (SimulatedRecord::states).
   bool keep_states = false;
 };

@@ -26,16 +26,7 @@ namespace ambdrop {
 // sample: a drop whose bounces, rest or whirl depend on less than that cannot be fitted below
 // this spread, whatever the effect. 0 without displacement channels.
 double DisplacementNoiseMedian(const RecordCost& cost) {
-  const MeasuredRecord& r = cost.record();
-  std::size_t last = 0;
-  while (last < r.time_s.size() && r.time_s[last] < cost.trigger_time_s()) ++last;
-  std::vector<const std::vector<double>*> columns;
-  for (const MeasurementChannel& ch : cost.measurement().channels) {
-    if (ch.quantity != MeasuredQuantity::kDisplacement) continue;
-    const int column = r.Column(ch.column);
-    if (column >= 0) columns.push_back(&r.values[static_cast<std::size_t>(column)]);
-  }
-  return MedianNoiseSigma(columns, last);
+  return cost.sensor_noise().sigma_m;
 }
 
 namespace {

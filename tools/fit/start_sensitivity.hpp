@@ -11,8 +11,9 @@
 namespace ambdrop {
 
 /// The record's displacement noise before the trigger: the median of its displacement
-/// channels' noise (NoiseSigma), m; 0 without a displacement channel. What the real rotor's
-/// controller answers, and so how much it jitters when the power fails.
+/// channels' noise (RecordCost::sensor_noise: NoiseSigma's where white), m; 0 without a
+/// displacement channel. What the real rotor's controller answers, and so how much it jitters
+/// when the power fails.
 double DisplacementNoiseMedian(const RecordCost& cost);
 
 /// Runs of the declared model with the rotor's jitter drawn that StartSensitivity makes on the

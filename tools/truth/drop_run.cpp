@@ -205,8 +205,22 @@ RunResult RunDrop(const Rig& rig, std::uint64_t seed, const RunOptions& options)
   // Noise: one stream per channel, so adding a channel does not move the others.
   std::vector<GaussianNoise> noise;
   for (std::uint64_t stream = 0; stream < 24; ++stream) noise.emplace_back(seed, stream);
+  // Displacement noise (streams 0..7: the controller's reads, then the record's) may pass the
+  // sensor's first-order bandwidth: an AR(1) sequence at each stream's own read period, scaled
+  // to keep sigma, started from its stationary law.
+  std::array<double, 8> coloured{};
+  std::array<bool, 8> coloured_started{};
+  const double bandwidth_Hz = rig.acquisition.sensor_noise_bandwidth_Hz;
   const auto draw = [&](int stream, double sigma) {
-    return options.add_noise && sigma > 0.0 ? sigma * noise[stream].Normal() : 0.0;
+    if (!options.add_noise || !(sigma > 0.0)) return 0.0;
+    if (!(bandwidth_Hz > 0.0) || stream >= 8) return sigma * noise[stream].Normal();
+    const double period_s = static_cast<double>(stream < 4 ? control_every : sample_every) * h;
+    const double a = std::exp(-2.0 * std::numbers::pi * bandwidth_Hz * period_s);
+    double& n = coloured[static_cast<std::size_t>(stream)];
+    const double w = noise[stream].Normal();
+    n = coloured_started[static_cast<std::size_t>(stream)] ? a * n + std::sqrt(1.0 - a * a) * w : w;
+    coloured_started[static_cast<std::size_t>(stream)] = true;
+    return sigma * n;
   };
 
   // The acquisition chain's delay: the (low-passed) sensor signal over the last lag_delay

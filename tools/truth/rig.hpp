@@ -159,6 +159,9 @@ struct AcquisitionRig {
   double trigger_time_s = 0.0;
   double sensor_noise_m = 0.0;         ///< sigma
   double sensor_quantisation_m = 0.0;  ///< 0: none
+  /// The displacement sensors' noise through their electronics' first-order bandwidth, Hz (a
+  /// coloured noise of the same sigma, as a real sensor's is); 0: white at every read.
+  double sensor_noise_bandwidth_Hz = 0.0;
   double current_noise_A = 0.0;
   double speed_noise_rpm = 0.0;
   double force_noise_N = 0.0;
