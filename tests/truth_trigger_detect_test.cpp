@@ -78,5 +78,28 @@ TEST(TruthTriggerDetect, AFadingForceIsFoundOnceItsFallLeavesTheNoise) {
   EXPECT_LE(d.found_s, d.truth_s + 2e-3);
 }
 
+TEST(TruthTriggerDetect, AHeldCurrentIsFoundWhereItStopsJittering) {
+  // rigid_hc_g's power loss holds every coil current for 0.4 ms, then lets the force fall: the
+  // rotor and the levels show nothing until the hold ends (the level rule alone found it
+  // 1.26 ms late). The held currents lose their levitated jitter at once: their second
+  // differences fall to the current channels' own noise, about 0.3 of the jitter's here.
+  for (const int seed : {1, 2}) {
+    const Detected d = Detect("rigid_hc_g", "clean", seed, {Q::kDisplacement, Q::kCurrent});
+    EXPECT_LE(std::abs(d.found_s - d.truth_s), 1.5 * d.sample_s + 1e-12) << seed;
+  }
+  // Without currents only the fall shows: after the hold.
+  const Detected late = Detect("rigid_hc_g", "clean", 1, {Q::kDisplacement});
+  EXPECT_GT(late.found_s, late.truth_s + 0.4e-3);
+}
+
+TEST(TruthTriggerDetect, FadingAndRampingCurrentsStopJitteringAtTheFailure) {
+  // rigid_rotor_e's currents fade with tau = 2 ms, rigid_fourdof_f's ramp down at 400 A/s:
+  // smooth from the failure on, both are dated by the jitter they lose, not by their fall.
+  for (const std::string rig : {"rigid_rotor_e", "rigid_fourdof_f"}) {
+    const Detected d = Detect(rig, "clean", 1, {Q::kDisplacement, Q::kCurrent});
+    EXPECT_LE(std::abs(d.found_s - d.truth_s), 1.5 * d.sample_s + 1e-12) << rig;
+  }
+}
+
 }  // namespace
 }  // namespace ambdrop::truth_trigger_detect_test

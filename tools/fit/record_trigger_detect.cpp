@@ -37,6 +37,96 @@ Levitated LevelOf(const std::vector<double>& v, std::size_t quiet, bool scaled_b
   return l;
 }
 
+// A powered amplifier makes its coil follow the controller, which answers its sensors' noise:
+// the levitated currents jitter. Once the power fails they are held, cut, ramped or fading,
+// smooth in every form, and their second differences fall to the channel's own measurement
+// noise (3 to 10 times less on the truth rigs). Where the failure holds the currents before
+// they fall, nothing else shows until the hold ends (rigid_hc_g: found 1.26 ms late).
+//
+// Each coil current's second difference in units of its levitated spread (1.4826 MAD over the
+// record's first tenth), squared and summed over the C channels: z_k, about chi2_C while
+// levitated. Over rows [q, stop - 1) the variance-change likelihood ratio is
+// 2 ln LR = C n (r - 1 - ln r), r their mean z over C. `stop` starts at `end`, the first row the
+// level rule takes as no longer levitated (row end - 1's second difference spans row end, where
+// a cut current jumps), and runs on while the rows stay quiet, as a fading or ramping current's
+// do. The onset is the q that maximises it with r < 1/2. Chance makes quiet stretches too (a
+// controller whose commands barely move for a few samples): the most likely one ending at any
+// row of the first tenth sets what chance reaches, and the onset counts only beyond 1.5 times
+// that (and kQuietLikelihood). The first quiet second difference (row q) already spans a held
+// row q - 1: the power failed between rows q - 2 and q - 1. On the six truth rigs' 252 battery
+// records (docs/verification.md, session 53) 218 were dated within 1.5 samples, 62 before.
+constexpr double kQuietLikelihood = 20.0;  // chi-square of 1 dof beyond p = 1e-5
+constexpr double kChanceMargin = 1.5;
+
+// The largest 2 ln LR of a quiet stretch [q, end - 1) over q, and that q (0: none with r < 1/2).
+struct QuietStretch {
+  double likelihood = 0.0;
+  std::size_t onset = 0;
+};
+
+QuietStretch MostLikelyQuiet(const std::vector<const std::vector<double>*>& currents,
+                             const std::vector<double>& spread, std::size_t first,
+                             std::size_t end) {
+  QuietStretch out;
+  const double channels = static_cast<double>(currents.size());
+  double sum = 0.0;
+  for (std::size_t k = end - 2; k >= first; --k) {
+    for (std::size_t c = 0; c < currents.size(); ++c) {
+      const std::vector<double>& v = *currents[c];
+      const double z = (v[k + 1] - 2.0 * v[k] + v[k - 1]) / spread[c];
+      sum += z * z;
+    }
+    const double n = static_cast<double>(end - 1 - k);
+    const double ratio = sum / (channels * n);
+    // Past a stretch as loud as the levitated time on average no quieter one begins.
+    if (ratio > 1.0) break;
+    const double lr = channels * n * (ratio - 1.0 - std::log(std::max(ratio, 1e-300)));
+    if (ratio < 0.5 && lr > out.likelihood) out = {lr, k};
+    if (k == first) break;
+  }
+  return out;
+}
+
+std::size_t QuietOnset(const MeasurementParams& m, const MeasuredRecord& r, std::size_t quiet,
+                       std::size_t end, std::size_t reach) {
+  std::vector<const std::vector<double>*> currents;
+  std::vector<double> spread;
+  for (const MeasurementChannel& ch : m.channels) {
+    if (ch.quantity != MeasuredQuantity::kCurrent) continue;
+    const std::vector<double>& v = r.values[r.Column(ch.column)];
+    std::vector<double> d2;
+    for (std::size_t k = 1; k + 1 < quiet; ++k)
+      d2.push_back(std::abs(v[k + 1] - 2.0 * v[k] + v[k - 1]));
+    if (d2.size() < 16) continue;
+    auto mid = d2.begin() + static_cast<std::ptrdiff_t>(d2.size() / 2);
+    std::nth_element(d2.begin(), mid, d2.end());
+    if (!(*mid > 0.0)) continue;  // a quantised or noise-free channel: no jitter to lose
+    currents.push_back(&v);
+    spread.push_back(1.4826 * *mid);
+  }
+  if (currents.empty() || end < quiet + 3) return 0;
+  // What chance makes of it: the most likely quiet stretch ending at each levitated row.
+  double chance = kQuietLikelihood;
+  for (std::size_t e = 4; e < quiet; ++e) {
+    chance = std::max(chance, MostLikelyQuiet(currents, spread, 1, e).likelihood);
+  }
+  // A current that fades or ramps stays smooth past `end`, where one cut jumps: the stretch
+  // runs on while its rows stay quiet, up to `reach` rows.
+  const auto loud = [&](std::size_t k) {
+    double sum = 0.0;
+    for (std::size_t c = 0; c < currents.size(); ++c) {
+      const std::vector<double>& v = *currents[c];
+      const double z = (v[k + 1] - 2.0 * v[k] + v[k - 1]) / spread[c];
+      sum += z * z;
+    }
+    return sum > 2.0 * static_cast<double>(currents.size());
+  };
+  std::size_t stop = end;
+  while (stop < end + reach && stop + 1 < r.time_s.size() && !loud(stop - 1)) ++stop;
+  const QuietStretch at = MostLikelyQuiet(currents, spread, quiet, stop);
+  return at.likelihood > kChanceMargin * chance && at.onset >= 2 ? at.onset : 0;
+}
+
 }  // namespace
 
 double RecordTriggerTime(const MeasurementParams& m, const MeasuredRecord& r) {
@@ -84,6 +174,9 @@ double RecordTriggerTime(const MeasurementParams& m, const MeasuredRecord& r) {
   }
   std::size_t j = first_far;
   while (j > quiet && !within(j)) --j;
+  // Currents that stopped jittering before row j + 1 date the failure earlier (a hold).
+  const std::size_t onset = QuietOnset(m, r, quiet, j + 1, 4 * sustained);
+  if (onset >= 2 && onset - 1 < j) return 0.5 * (r.time_s[onset - 2] + r.time_s[onset - 1]);
   // The power went between row j (still levitated) and row j + 1: the middle of the interval
   // is the unbiased estimate, wrong by half a sample at most where either end may be a whole
   // one (a sampler that reads after the cut puts it on row j + 1, one before it on row j).

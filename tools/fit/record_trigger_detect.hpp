@@ -12,7 +12,10 @@ namespace ambdrop {
 /// is surely after the power failed: from there back to the last row on which every channel is
 /// within 3 sigma of its level, and the trigger is the middle of the interval after that row.
 /// A failure that shows at once (currents cut) is found within half a sample; one that shows
-/// slowly (a slow decay or ramp) when its effect leaves the noise, later by that time.
+/// slowly (a slow decay or ramp) when its effect leaves the noise, later by that time. Where
+/// the coil currents stopped jittering before that (their second differences fall to their
+/// measurement noise once no amplifier follows the controller: held, fading, ramping), the
+/// trigger is dated where they did, if beyond what chance makes of the levitated time.
 /// Throws std::runtime_error when no such channel leaves its level for good.
 double RecordTriggerTime(const MeasurementParams& measurement, const MeasuredRecord& record);
 
