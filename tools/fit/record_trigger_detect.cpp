@@ -58,6 +58,19 @@ Levitated LevelOf(const std::vector<double>& v, std::size_t quiet, bool scaled_b
 constexpr double kQuietLikelihood = 20.0;  // chi-square of 1 dof beyond p = 1e-5
 constexpr double kChanceMargin = 1.5;
 
+// Row k's second differences, each in units of its channel's levitated spread, squared and
+// summed over the channels.
+double PooledZ(const std::vector<const std::vector<double>*>& currents,
+               const std::vector<double>& spread, std::size_t k) {
+  double sum = 0.0;
+  for (std::size_t c = 0; c < currents.size(); ++c) {
+    const std::vector<double>& v = *currents[c];
+    const double z = (v[k + 1] - 2.0 * v[k] + v[k - 1]) / spread[c];
+    sum += z * z;
+  }
+  return sum;
+}
+
 // The largest 2 ln LR of a quiet stretch [q, end - 1) over q, and that q (0: none with r < 1/2).
 struct QuietStretch {
   double likelihood = 0.0;
@@ -71,11 +84,7 @@ QuietStretch MostLikelyQuiet(const std::vector<const std::vector<double>*>& curr
   const double channels = static_cast<double>(currents.size());
   double sum = 0.0;
   for (std::size_t k = end - 2; k >= first; --k) {
-    for (std::size_t c = 0; c < currents.size(); ++c) {
-      const std::vector<double>& v = *currents[c];
-      const double z = (v[k + 1] - 2.0 * v[k] + v[k - 1]) / spread[c];
-      sum += z * z;
-    }
+    sum += PooledZ(currents, spread, k);
     const double n = static_cast<double>(end - 1 - k);
     const double ratio = sum / (channels * n);
     // Past a stretch as loud as the levitated time on average no quieter one begins.
@@ -113,13 +122,7 @@ std::size_t QuietOnset(const MeasurementParams& m, const MeasuredRecord& r, std:
   // A current that fades or ramps stays smooth past `end`, where one cut jumps: the stretch
   // runs on while its rows stay quiet, up to `reach` rows.
   const auto loud = [&](std::size_t k) {
-    double sum = 0.0;
-    for (std::size_t c = 0; c < currents.size(); ++c) {
-      const std::vector<double>& v = *currents[c];
-      const double z = (v[k + 1] - 2.0 * v[k] + v[k - 1]) / spread[c];
-      sum += z * z;
-    }
-    return sum > 2.0 * static_cast<double>(currents.size());
+    return PooledZ(currents, spread, k) > 2.0 * static_cast<double>(currents.size());
   };
   std::size_t stop = end;
   while (stop < end + reach && stop + 1 < r.time_s.size() && !loud(stop - 1)) ++stop;
