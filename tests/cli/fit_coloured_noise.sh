@@ -10,17 +10,7 @@
 # (white noise): bandwidth 0, and sigma that of second differences.
 # Usage: fit_coloured_noise.sh AMBDROP_BINARY SOURCE_DIR [AMBDROP_TRUTH_BINARY]
 source "$(dirname "$0")/../support/cli_prelude.sh" "$@"
-truth_tool=${3:-}
-if [[ -z $truth_tool ]]; then
-  for candidate in "$(dirname "$tool")/truth/ambdrop_truth" \
-    "$(dirname "$tool")/tools/truth/ambdrop_truth"; do
-    [[ -x $candidate ]] && truth_tool=$candidate && break
-  done
-fi
-[[ -n $truth_tool && -x $truth_tool ]] || {
-  echo "SKIP: no ambdrop_truth binary (pass it as the third argument)"
-  exit 77
-}
+find_truth_tool_or_skip "${3:-}"
 
 rig=$source_dir/tools/truth/rigs/rigid_rotor_a.json
 python3 - "$rig" coloured.json <<'PY'

@@ -114,17 +114,7 @@
 #   (the truth binary defaults to tools/truth/ambdrop_truth beside the ambdrop binary's build
 #   tree; without it the script skips, exit 77)
 source "$(dirname "$0")/../support/cli_prelude.sh" "$@"
-truth_tool=${3:-}
-if [[ -z $truth_tool ]]; then
-  for candidate in "$(dirname "$tool")/truth/ambdrop_truth" \
-    "$(dirname "$tool")/tools/truth/ambdrop_truth"; do
-    [[ -x $candidate ]] && truth_tool=$candidate && break
-  done
-fi
-[[ -n $truth_tool && -x $truth_tool ]] || {
-  echo "SKIP: no ambdrop_truth binary (pass it as the third argument)"
-  exit 77
-}
+find_truth_tool_or_skip "${3:-}"
 
 # The battery's seeds (ambdrop_truth --battery: kinds in order, seeds 1, 2, ...), so that these
 # are the battery's own records. Each case: rig, effect, seed, and optionally more `fit`

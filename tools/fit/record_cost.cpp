@@ -162,9 +162,6 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
   const std::size_t start_row = first_row_at(compare_from_s_);
   const std::size_t trigger_row = first_row_at(trigger_s_);
   const std::size_t settled_row = first_row_at(settled_from_s_);
-  // The noise the record's controller answers: its displacements' (median over the sensors).
-  // (Closed loop, the only kind with a spectrum, compares from the record's first row.)
-  if (spectrum) spectrum_noise_m_ = sensor_noise_.sigma_m;
   for (std::size_t c = 0; c < measurement.channels.size(); ++c) {
     const MeasurementChannel& ch = measurement.channels[c];
     const int col = record.Column(ch.column);
@@ -176,7 +173,7 @@ RecordCost::RecordCost(const ModelParams& declared, const MeasurementParams& mea
     if (levitated && ch.quantity != MeasuredQuantity::kDisplacement && !CurrentLike(ch.quantity)) {
       continue;
     }
-    if (spectrum && (!CurrentLike(ch.quantity) || !(spectrum_noise_m_ > 0.0))) continue;
+    if (spectrum && (!CurrentLike(ch.quantity) || !(sensor_noise_.sigma_m > 0.0))) continue;
     // Open loop no controller runs, so nothing predicts its command: not compared.
     if (ch.quantity == MeasuredQuantity::kControllerCommand && !closed) continue;
     // power_loss = "from_record": the coil currents drive the model; they are its input.
@@ -315,7 +312,7 @@ void RecordCost::SpectrumResidual(const std::shared_ptr<const ModelParams>& para
   for (int k = 1; reached && k <= kSpectrumRuns; ++k) {
     RecordRunOptions o = options;
     o.end_s = std::min(o.end_s, trigger_s_);
-    o.jitter_sigma_m = spectrum_noise_m_;
+    o.jitter_sigma_m = sensor_noise_.sigma_m;
     o.jitter_seed = static_cast<std::uint64_t>(k);
     o.keep_states = false;
     const SimulatedRecord run = SimulateOnRecord(*params, measurement_, record_, o);

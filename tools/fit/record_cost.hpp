@@ -124,7 +124,9 @@ class RecordCost {
   /// CostScope::kSpectrum: the currents whose noise spectrum is compared, and the sensor noise
   /// (m) the model's controller answers for it (0: none compared).
   std::size_t spectra() const { return spectra_.size(); }
-  double spectrum_noise_m() const { return spectrum_noise_m_; }
+  double spectrum_noise_m() const {
+    return scope_ == CostScope::kSpectrum ? sensor_noise_.sigma_m : 0.0;
+  }
   /// The record's displacement noise before the trigger, white or coloured (the median over
   /// its displacement channels, tools/fit/sensor_noise_colour.hpp); its bandwidth goes with
   /// every jitter drawn on this cost's runs (run_options().jitter_bandwidth_Hz).
@@ -176,7 +178,6 @@ class RecordCost {
   std::vector<Block> blocks_;
   std::vector<Spectrum> spectra_;
   std::size_t spectrum_bands_ = 0;
-  double spectrum_noise_m_ = 0.0;
   SensorNoise sensor_noise_;
   /// Per measurement channel: a coloured displacement channel's noise sigma (m), which its
   /// second differences understate; 0: NoiseSigma's, as for white noise.

@@ -214,9 +214,10 @@ Rig ReadRig(const std::string& path) {
   rig.acquisition.sensor_noise_m = q.Number("sensor_noise_sigma_m");
   rig.acquisition.sensor_quantisation_m = q.Number("sensor_quantisation_m", 0.0);
   rig.acquisition.sensor_noise_bandwidth_Hz = q.Number("sensor_noise_bandwidth_Hz", 0.0);
-  if (!(rig.acquisition.sensor_noise_bandwidth_Hz >= 0.0)) {
+  if (!(std::isfinite(rig.acquisition.sensor_noise_bandwidth_Hz) &&
+        rig.acquisition.sensor_noise_bandwidth_Hz >= 0.0)) {
     throw std::runtime_error(q.At("sensor_noise_bandwidth_Hz").path() +
-                             ": expected a bandwidth >= 0 Hz (0: white noise)");
+                             ": expected a finite bandwidth >= 0 Hz (0: white noise)");
   }
   rig.acquisition.current_noise_A = q.Number("current_noise_sigma_A", 0.0);
   rig.acquisition.speed_noise_rpm = q.Number("speed_noise_sigma_rpm", 0.0);
